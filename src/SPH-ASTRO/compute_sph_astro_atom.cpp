@@ -1,0 +1,100 @@
+/* ----------------------------------------------------------------------
+   SPH-ASTRO: per-atom SPH quantities
+------------------------------------------------------------------------- */
+
+// compute ID group sph/astro/atom [rho] [h] [pressure] [cs] [u] [nneigh] [divv] [dudt]
+// (all of them, in this order, when none is named). Pressure, sound speed, neighbour count
+// and div v are those of the latest force evaluation of pair sph/astro.
+
+#include "compute_sph_astro_atom.h"
+
+#include "atom.h"
+#include "error.h"
+#include "force.h"
+#include "memory.h"
+#include "pair_sph_astro.h"
+#include "update.h"
+
+#include <cstring>
+
+using namespace LAMMPS_NS;
+
+ComputeSPHAstroAtom::ComputeSPHAstroAtom(LAMMPS *lmp, int narg, char **arg) :
+    Compute(lmp, narg, arg)
+{
+  static const char *names[] = {"rho", "h", "pressure", "cs", "u", "nneigh", "divv", "dudt"};
+  const int nnames = sizeof(names) / sizeof(names[0]);
+  if (narg == 3)
+    for (int k = 0; k < 6; k++) fields_.push_back(static_cast<Field>(k));
+  for (int iarg = 3; iarg < narg; iarg++) {
+    int k = 0;
+    while (k < nnames && strcmp(arg[iarg], names[k]) != 0) k++;
+    if (k == nnames)
+      error->all(FLERR,
+                 "compute sph/astro/atom: unknown field '{}'; allowed: rho, h, pressure, cs, u, "
+                 "nneigh, divv, dudt",
+                 arg[iarg]);
+    fields_.push_back(static_cast<Field>(k));
+  }
+  peratom_flag = 1;
+  size_peratom_cols = fields_.size() == 1 ? 0 : static_cast<int>(fields_.size());
+}
+
+ComputeSPHAstroAtom::~ComputeSPHAstroAtom()
+{
+  memory->destroy(vector_);
+  memory->destroy(array_);
+}
+
+void ComputeSPHAstroAtom::init()
+{
+  pair_ = dynamic_cast<PairSPHAstro *>(force->pair_match("^sph/astro$", 0, 0));
+  if (!pair_) error->all(FLERR, "compute sph/astro/atom requires pair_style sph/astro");
+  if (!SPHAstro::find_state(lmp, state_))
+    error->all(FLERR, "compute sph/astro/atom requires fix sph/astro (the per-particle state)");
+}
+
+void ComputeSPHAstroAtom::compute_peratom()
+{
+  invoked_peratom = update->ntimestep;
+  const int nlocal = atom->nlocal;
+  if (atom->nmax > nmax_) {
+    nmax_ = atom->nmax;
+    if (size_peratom_cols == 0) {
+      memory->destroy(vector_);
+      memory->create(vector_, nmax_, "sph/astro/atom:vector");
+      vector_atom = vector_;
+    } else {
+      memory->destroy(array_);
+      memory->create(array_, nmax_, size_peratom_cols, "sph/astro/atom:array");
+      array_atom = array_;
+    }
+  }
+  int ncol;
+  const double *columns[8] = {
+      atom->dvector[state_.rho],
+      atom->dvector[state_.h],
+      static_cast<double *>(pair_->extract_peratom("pressure", ncol)),
+      static_cast<double *>(pair_->extract_peratom("soundspeed", ncol)),
+      atom->dvector[state_.u],
+      static_cast<double *>(pair_->extract_peratom("nneigh", ncol)),
+      static_cast<double *>(pair_->extract_peratom("divv", ncol)),
+      atom->dvector[state_.dudt]};
+  const int *mask = atom->mask;
+  const int nf = static_cast<int>(fields_.size());
+  for (int k = 0; k < nf; k++) {
+    const double *src = columns[fields_[k]];
+    for (int i = 0; i < nlocal; i++) {
+      const double value = (src && (mask[i] & groupbit)) ? src[i] : 0.0;
+      if (size_peratom_cols == 0)
+        vector_[i] = value;
+      else
+        array_[i][k] = value;
+    }
+  }
+}
+
+double ComputeSPHAstroAtom::memory_usage()
+{
+  return static_cast<double>(nmax_) * fields_.size() * sizeof(double);
+}

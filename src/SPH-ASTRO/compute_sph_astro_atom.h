@@ -1,0 +1,42 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   SPH-ASTRO: astrophysical smoothed particle hydrodynamics for LAMMPS
+------------------------------------------------------------------------- */
+
+#ifdef COMPUTE_CLASS
+// clang-format off
+ComputeStyle(sph/astro/atom,ComputeSPHAstroAtom);
+// clang-format on
+#else
+
+#ifndef LMP_COMPUTE_SPH_ASTRO_ATOM_H
+#define LMP_COMPUTE_SPH_ASTRO_ATOM_H
+
+#include "compute.h"
+#include "sph_astro_state.h"
+
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class ComputeSPHAstroAtom : public Compute {
+ public:
+  ComputeSPHAstroAtom(class LAMMPS *, int, char **);
+  ~ComputeSPHAstroAtom() override;
+  void init() override;
+  void compute_peratom() override;
+  double memory_usage() override;
+
+ private:
+  enum Field { RHO, H, PRESSURE, SOUNDSPEED, U, NNEIGH, DIVV, DUDT };
+  std::vector<Field> fields_;
+  int nmax_ = 0;
+  double *vector_ = nullptr;
+  double **array_ = nullptr;
+  SPHAstro::StateIndex state_;
+  class PairSPHAstro *pair_ = nullptr;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -1,0 +1,115 @@
+/* ----------------------------------------------------------------------
+   SPH-ASTRO: global conserved quantities
+------------------------------------------------------------------------- */
+
+// compute ID group sph/astro/global -> vector of 12:
+//   1 mass  2-4 momentum  5-7 angular momentum about the origin  8 kinetic energy
+//   9 thermal energy sum m u (EOS-consistent u for polytropes, 0 for the isothermal gas)
+//   10 potential energy (pair, kspace and fix contributions, as compute pe)
+//   11 total energy  12 (E - E0)/|E0|, E0 the total energy when first evaluated; fix
+//   sph/astro keeps E0 across restarts.
+
+#include "compute_sph_astro_global.h"
+
+#include "atom.h"
+#include "domain.h"
+#include "error.h"
+#include "fix_sph_astro.h"
+#include "force.h"
+#include "kspace.h"
+#include "modify.h"
+#include "pair_sph_astro.h"
+#include "update.h"
+
+#include <cmath>
+
+using namespace LAMMPS_NS;
+
+ComputeSPHAstroGlobal::ComputeSPHAstroGlobal(LAMMPS *lmp, int narg, char **arg) :
+    Compute(lmp, narg, arg)
+{
+  if (narg != 3) error->all(FLERR, "compute sph/astro/global takes no arguments (got {})", narg - 3);
+  vector_flag = 1;
+  size_vector = NVALUES;
+  extvector = 0;
+  peflag = 1;    // the potential energy must be tallied on the steps this compute is used
+  timeflag = 1;
+  vector = new double[NVALUES];
+}
+
+ComputeSPHAstroGlobal::~ComputeSPHAstroGlobal()
+{
+  delete[] vector;
+}
+
+void ComputeSPHAstroGlobal::init()
+{
+  pair_ = dynamic_cast<PairSPHAstro *>(force->pair_match("^sph/astro$", 0, 0));
+  if (!pair_) error->all(FLERR, "compute sph/astro/global requires pair_style sph/astro");
+  if (!SPHAstro::find_state(lmp, state_))
+    error->all(FLERR, "compute sph/astro/global requires fix sph/astro (the per-particle state)");
+  auto fixes = modify->get_fix_by_style("^sph/astro$");
+  fix_ = fixes.empty() ? nullptr : dynamic_cast<FixSPHAstro *>(fixes.front());
+}
+
+void ComputeSPHAstroGlobal::compute_vector()
+{
+  invoked_vector = update->ntimestep;
+  if (update->eflag_global != invoked_vector)
+    error->all(FLERR, "compute sph/astro/global: energy was not tallied on step {}",
+               update->ntimestep);
+
+  double **x = atom->x;
+  double **v = atom->v;
+  const int *mask = atom->mask;
+  const int *type = atom->type;
+  const imageint *image = atom->image;
+  const double *rmass = atom->rmass;
+  const double *mass = atom->mass;
+  const double *rho = atom->dvector[state_.rho];
+  const double *u = atom->dvector[state_.u];
+  const SPHAstro::EOS &eos = pair_->eos();
+  const int nlocal = atom->nlocal;
+
+  double local[NVALUES] = {0.0};
+  double unwrap[3];
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const double m = rmass ? rmass[i] : mass[type[i]];
+    domain->unmap(x[i], image[i], unwrap);
+    local[MASS] += m;
+    local[PX] += m * v[i][0];
+    local[PY] += m * v[i][1];
+    local[PZ] += m * v[i][2];
+    local[LX] += m * (unwrap[1] * v[i][2] - unwrap[2] * v[i][1]);
+    local[LY] += m * (unwrap[2] * v[i][0] - unwrap[0] * v[i][2]);
+    local[LZ] += m * (unwrap[0] * v[i][1] - unwrap[1] * v[i][0]);
+    local[EKIN] += 0.5 * m * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
+    local[ETHERM] += m * eos.energy_of(rho[i], u[i]);
+  }
+  MPI_Allreduce(local, vector, NVALUES, MPI_DOUBLE, MPI_SUM, world);
+
+  // potential energy as compute pe: pair (sph/astro itself adds none), kspace, fixes
+  double epot = 0.0, pair_energy = 0.0;
+  if (force->pair) {
+    double one = force->pair->eng_vdwl + force->pair->eng_coul;
+    MPI_Allreduce(&one, &pair_energy, 1, MPI_DOUBLE, MPI_SUM, world);
+    epot += pair_energy;
+  }
+  if (force->kspace) epot += force->kspace->energy;
+  epot += modify->energy_global();
+  vector[EPOT] = epot;
+  vector[ETOT] = vector[EKIN] + vector[ETHERM] + epot;
+
+  double e0;
+  if (fix_)
+    e0 = fix_->reference_energy(vector[ETOT]);
+  else {
+    if (!own_reference_set_) {
+      own_reference_ = vector[ETOT];
+      own_reference_set_ = true;
+    }
+    e0 = own_reference_;
+  }
+  vector[DEREL] = (e0 != 0.0) ? (vector[ETOT] - e0) / std::fabs(e0) : vector[ETOT] - e0;
+}

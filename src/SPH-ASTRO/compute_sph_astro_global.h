@@ -1,0 +1,39 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   SPH-ASTRO: astrophysical smoothed particle hydrodynamics for LAMMPS
+------------------------------------------------------------------------- */
+
+#ifdef COMPUTE_CLASS
+// clang-format off
+ComputeStyle(sph/astro/global,ComputeSPHAstroGlobal);
+// clang-format on
+#else
+
+#ifndef LMP_COMPUTE_SPH_ASTRO_GLOBAL_H
+#define LMP_COMPUTE_SPH_ASTRO_GLOBAL_H
+
+#include "compute.h"
+#include "sph_astro_state.h"
+
+namespace LAMMPS_NS {
+
+class ComputeSPHAstroGlobal : public Compute {
+ public:
+  ComputeSPHAstroGlobal(class LAMMPS *, int, char **);
+  ~ComputeSPHAstroGlobal() override;
+  void init() override;
+  void compute_vector() override;
+
+  enum Index { MASS, PX, PY, PZ, LX, LY, LZ, EKIN, ETHERM, EPOT, ETOT, DEREL, NVALUES };
+
+ private:
+  SPHAstro::StateIndex state_;
+  class PairSPHAstro *pair_ = nullptr;
+  class FixSPHAstro *fix_ = nullptr;
+  bool own_reference_set_ = false;
+  double own_reference_ = 0.0;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -1,0 +1,341 @@
+/* ----------------------------------------------------------------------
+   SPH-ASTRO: astrophysical smoothed particle hydrodynamics for LAMMPS
+------------------------------------------------------------------------- */
+
+// Fix sph/astro: kick-drift-kick leapfrog of x, v and u (seed 001 "leapfrog/KDK";
+// seed 004 sec. 9.3) with the predicted v and u the pair style uses for the viscosity and
+// the equation of state at the end of the step:
+//   v^{n+1/2} = v^n + dt/2 a^n,  x^{n+1} = x^n + dt v^{n+1/2},  v_est = v^{n+1/2} + dt/2 a^n
+//   u^{n+1/2} = u^n + dt/2 du^n, u_est = u^{n+1/2} + dt/2 du^n
+//   (forces at n+1 from x^{n+1}, v_est, u_est)
+//   v^{n+1} = v^{n+1/2} + dt/2 a^{n+1},  u^{n+1} = u^{n+1/2} + dt/2 du^{n+1}
+// Adaptive global timestep (seed 000, "criteria for choosing the timestep"):
+//   dt_cv = C h / (c + h|div v| + 1.2 (alpha c + beta h |div v|)),  dt_f = C_f sqrt(h / |a|)
+
+#include "fix_sph_astro.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "force.h"
+#include "modify.h"
+#include "output.h"
+#include "pair_sph_astro.h"
+#include "timer.h"
+#include "update.h"
+#include "utils.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+using namespace SPHAstro;
+
+FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
+{
+  time_integrate = 1;
+  restart_global = 1;
+  scalar_flag = 1;    // current dt
+  vector_flag = 1;    // [dt_courant, dt_force]
+  size_vector = 2;
+  global_freq = 1;
+  extscalar = 0;
+  extvector = 0;
+
+  int iarg = 3;
+  while (iarg < narg) {
+    const std::string key = arg[iarg];
+    if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sph/astro " + key, error);
+    const char *val = arg[iarg + 1];
+    if (key == "courant") {
+      courant_ = utils::numeric(FLERR, val, false, lmp);
+      if (!(courant_ > 0.0) || courant_ > 1.0)
+        error->all(FLERR, "fix sph/astro: courant = {} must be in (0, 1]", val);
+    } else if (key == "force") {
+      force_factor_ = utils::numeric(FLERR, val, false, lmp);
+      if (!(force_factor_ > 0.0) || force_factor_ > 1.0)
+        error->all(FLERR, "fix sph/astro: force = {} must be in (0, 1]", val);
+    } else if (key == "dtmax") {
+      dtmax_ = utils::numeric(FLERR, val, false, lmp);
+      if (!(dtmax_ > 0.0)) error->all(FLERR, "fix sph/astro: dtmax = {} must be > 0", val);
+    } else if (key == "dtmin") {
+      dtmin_ = utils::numeric(FLERR, val, false, lmp);
+      if (!(dtmin_ > 0.0)) error->all(FLERR, "fix sph/astro: dtmin = {} must be > 0", val);
+    } else if (key == "tend") {
+      tend_ = utils::numeric(FLERR, val, false, lmp);
+      if (!(tend_ > 0.0)) error->all(FLERR, "fix sph/astro: tend = {} must be > 0", val);
+    } else if (key == "dt") {
+      if (strcmp(val, "adaptive") == 0)
+        adaptive_ = true;
+      else if (strcmp(val, "fixed") == 0)
+        adaptive_ = false;
+      else
+        error->all(FLERR, "fix sph/astro: dt '{}' is not one of: adaptive, fixed", val);
+    } else
+      error->all(FLERR,
+                 "fix sph/astro: unknown keyword '{}'; allowed: courant, force, dtmax, dtmin, "
+                 "tend, dt",
+                 key);
+    iarg += 2;
+  }
+  if (dtmin_ > 0.0 && dtmax_ > 0.0 && dtmin_ > dtmax_)
+    error->all(FLERR, "fix sph/astro: dtmin {} is larger than dtmax {}", dtmin_, dtmax_);
+}
+
+int FixSPHAstro::setmask()
+{
+  return INITIAL_INTEGRATE | FINAL_INTEGRATE | END_OF_STEP;
+}
+
+void FixSPHAstro::post_constructor()
+{
+  ensure_state(lmp, "fix sph/astro");
+}
+
+void FixSPHAstro::init()
+{
+  pair_ = dynamic_cast<PairSPHAstro *>(force->pair_match("^sph/astro$", 0, 0));
+  if (!pair_) error->all(FLERR, "fix sph/astro requires pair_style sph/astro");
+  if (force->ftm2v != 1.0 || force->mvv2e != 1.0)
+    error->all(FLERR,
+               "fix sph/astro: units {} mix energy and force units (ftm2v = {}); use units lj, "
+               "si, cgs, micro or nano",
+               update->unit_style, force->ftm2v);
+  if (!find_state(lmp, state_))
+    error->all(FLERR, "fix sph/astro: the per-particle state fix {} is missing", STATE_FIX_ID);
+  evolve_u_ = pair_->eos().uses_energy();
+
+  // predictions are only kept when they belong to this step (continued or restarted run):
+  // otherwise the viscosity and EOS start from the current v and u
+  if (predicted_step_ != update->ntimestep) {
+    const int nlocal = atom->nlocal;
+    double **v = atom->v;
+    double **vest = atom->darray[state_.vest];
+    const double *u = atom->dvector[state_.u];
+    double *uest = atom->dvector[state_.uest];
+    for (int i = 0; i < nlocal; i++) {
+      vest[i][0] = v[i][0];
+      vest[i][1] = v[i][1];
+      vest[i][2] = v[i][2];
+      uest[i] = u[i];
+    }
+  }
+}
+
+void FixSPHAstro::setup(int /*vflag*/)
+{
+  stopped_at_tend_ = false;
+  if (tend_ > 0.0 && current_time() >= tend_ * (1.0 - 1e-12)) {
+    if (comm->me == 0)
+      error->warning(FLERR, "fix sph/astro: time {} already at tend {}: the run stops at once",
+                     current_time(), tend_);
+    stopped_at_tend_ = true;
+    timer->force_timeout();
+    return;
+  }
+  next_timestep();
+}
+
+double FixSPHAstro::current_time() const
+{
+  return update->atime + (update->ntimestep - update->atimestep) * update->dt;
+}
+
+void FixSPHAstro::initial_integrate(int /*vflag*/)
+{
+  const double dt = update->dt;
+  const double dtf = 0.5 * dt;
+  double **x = atom->x;
+  double **v = atom->v;
+  double **f = atom->f;
+  const int *mask = atom->mask;
+  const int *type = atom->type;
+  const double *rmass = atom->rmass;
+  const double *mass = atom->mass;
+  double **vest = atom->darray[state_.vest];
+  double *u = atom->dvector[state_.u];
+  double *uest = atom->dvector[state_.uest];
+  const double *dudt = atom->dvector[state_.dudt];
+  const int nlocal = atom->nlocal;
+
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) {
+      vest[i][0] = v[i][0];
+      vest[i][1] = v[i][1];
+      vest[i][2] = v[i][2];
+      uest[i] = u[i];
+      continue;
+    }
+    const double dtfm = dtf / (rmass ? rmass[i] : mass[type[i]]);
+    for (int d = 0; d < 3; d++) {
+      v[i][d] += dtfm * f[i][d];
+      vest[i][d] = v[i][d] + dtfm * f[i][d];
+      x[i][d] += dt * v[i][d];
+    }
+    if (evolve_u_) {
+      u[i] += dtf * dudt[i];
+      uest[i] = u[i] + dtf * dudt[i];
+    } else
+      uest[i] = u[i];
+  }
+  predicted_step_ = update->ntimestep;
+}
+
+void FixSPHAstro::final_integrate()
+{
+  const double dtf = 0.5 * update->dt;
+  double **v = atom->v;
+  double **f = atom->f;
+  const int *mask = atom->mask;
+  const int *type = atom->type;
+  const double *rmass = atom->rmass;
+  const double *mass = atom->mass;
+  double *u = atom->dvector[state_.u];
+  const double *dudt = atom->dvector[state_.dudt];
+  const int nlocal = atom->nlocal;
+
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const double dtfm = dtf / (rmass ? rmass[i] : mass[type[i]]);
+    v[i][0] += dtfm * f[i][0];
+    v[i][1] += dtfm * f[i][1];
+    v[i][2] += dtfm * f[i][2];
+    if (evolve_u_) {
+      u[i] += dtf * dudt[i];
+      if (!(u[i] >= 0.0) || !std::isfinite(u[i]))
+        error->one(FLERR,
+                   "fix sph/astro: atom {} has specific internal energy u = {} (du/dt = {}) at "
+                   "step {}; lower the timestep (courant, force) or check the initial state",
+                   atom->tag[i], u[i], dudt[i], update->ntimestep);
+    }
+  }
+}
+
+void FixSPHAstro::end_of_step()
+{
+  if (tend_ > 0.0 && current_time() >= tend_ * (1.0 - 1e-12)) {
+    stopped_at_tend_ = true;
+    timer->force_timeout();
+    if (comm->me == 0)
+      utils::logmesg(lmp, "fix sph/astro: reached tend = {} at step {}\n", tend_,
+                     update->ntimestep);
+    return;
+  }
+  next_timestep();
+}
+
+void FixSPHAstro::post_run()
+{
+  // a stop at tend ends this run only; later runs get the user's timeout back
+  if (stopped_at_tend_) timer->reset_timeout();
+}
+
+void FixSPHAstro::next_timestep()
+{
+  double dt = update->dt;
+  if (adaptive_) {
+    int ncol;
+    const double *cs = static_cast<double *>(pair_->extract_peratom("soundspeed", ncol));
+    const double *divv = static_cast<double *>(pair_->extract_peratom("divv", ncol));
+    const double *h = atom->dvector[state_.h];
+    double **f = atom->f;
+    const int *mask = atom->mask;
+    const int *type = atom->type;
+    const double *rmass = atom->rmass;
+    const double *mass = atom->mass;
+    const int nlocal = atom->nlocal;
+    const double alpha = pair_->alpha(), beta = pair_->beta();
+
+    struct {
+      double value;
+      int rank_index;
+    } mine[2] = {{INFINITY, -1}, {INFINITY, -1}}, all[2];
+    for (int i = 0; i < nlocal; i++) {
+      if (!(mask[i] & groupbit)) continue;
+      const double hdiv = h[i] * std::fabs(divv[i]);
+      const double vsig = cs[i] + hdiv + 1.2 * (alpha * cs[i] + beta * hdiv);
+      if (vsig > 0.0) {
+        const double dtcv = courant_ * h[i] / vsig;
+        if (dtcv < mine[0].value) mine[0] = {dtcv, static_cast<int>(atom->tag[i])};
+      }
+      const double m = rmass ? rmass[i] : mass[type[i]];
+      const double a = std::sqrt(f[i][0] * f[i][0] + f[i][1] * f[i][1] + f[i][2] * f[i][2]) / m;
+      if (a > 0.0) {
+        const double dtf = force_factor_ * std::sqrt(h[i] / a);
+        if (dtf < mine[1].value) mine[1] = {dtf, static_cast<int>(atom->tag[i])};
+      }
+    }
+    MPI_Allreduce(mine, all, 2, MPI_DOUBLE_INT, MPI_MINLOC, world);
+    last_dt_cv_ = all[0].value;
+    last_dt_force_ = all[1].value;
+    const double dtnew = MIN(all[0].value, all[1].value);
+    last_limiting_atom_ = all[0].value <= all[1].value ? all[0].rank_index : all[1].rank_index;
+    // with no finite constraint (isolated cold particles) the step stays as it is
+    if (std::isfinite(dtnew)) dt = dtnew;
+    if (dtmax_ > 0.0) dt = MIN(dt, dtmax_);
+    if (dtmin_ > 0.0 && dt < dtmin_)
+      error->all(FLERR,
+                 "fix sph/astro: timestep {} fell below dtmin = {} at step {} (limited by atom "
+                 "{}: Courant dt {}, force dt {})",
+                 dt, dtmin_, update->ntimestep, last_limiting_atom_, last_dt_cv_, last_dt_force_);
+  }
+  if (tend_ > 0.0) {
+    const double remaining = tend_ - current_time();
+    if (remaining > 0.0 && dt > remaining) dt = remaining;
+  }
+  if (!(dt > 0.0) || !std::isfinite(dt))
+    error->all(FLERR, "fix sph/astro: timestep {} at step {} is not positive and finite", dt,
+               update->ntimestep);
+  set_timestep(dt);
+}
+
+void FixSPHAstro::set_timestep(double dt)
+{
+  if (dt == update->dt) return;
+  // same sequence as fix dt/reset and Input::timestep()
+  update->update_time();
+  update->dt = dt;
+  update->dt_default = 0;
+  if (force->pair) force->pair->reset_dt();
+  for (auto &ifix : modify->get_fix_list()) ifix->reset_dt();
+  output->reset_dt();
+}
+
+double FixSPHAstro::compute_scalar()
+{
+  return update->dt;
+}
+
+double FixSPHAstro::compute_vector(int n)
+{
+  return n == 0 ? last_dt_cv_ : last_dt_force_;
+}
+
+double FixSPHAstro::reference_energy(double current)
+{
+  if (!have_reference_) {
+    reference_energy_ = current;
+    have_reference_ = 1;
+  }
+  return reference_energy_;
+}
+
+void FixSPHAstro::write_restart(FILE *fp)
+{
+  if (comm->me == 0) {
+    double list[4] = {static_cast<double>(predicted_step_), static_cast<double>(have_reference_),
+                      reference_energy_, update->dt};
+    int size = sizeof(list);
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(list, sizeof(double), 4, fp);
+  }
+}
+
+void FixSPHAstro::restart(char *buf)
+{
+  auto *list = reinterpret_cast<double *>(buf);
+  predicted_step_ = static_cast<bigint>(list[0]);
+  have_reference_ = static_cast<int>(list[1]);
+  reference_energy_ = list[2];
+}

@@ -1,0 +1,622 @@
+/* ----------------------------------------------------------------------
+   SPH-ASTRO: astrophysical smoothed particle hydrodynamics for LAMMPS
+------------------------------------------------------------------------- */
+
+// Pair style sph/astro: density summation, equation of state, pressure force, classic
+// artificial viscosity and the matching energy equation. Symmetrisation by the mean
+// smoothing length h_ij = (h_i + h_j)/2 (seed 000, "some notation").
+//
+// pass 1  rho_i = sum_j m_j W(r_ij, h_ij)                                  (seed 000, density)
+// pass 2  dv_i/dt = -sum_j m_j (P_i/rho_i^2 + P_j/rho_j^2 + Pi_ij) grad_i W_ij  (seed 000)
+//         du_i/dt = P_i/rho_i^2 sum_j m_j v_ij . grad_i W_ij
+//                   + 1/2 sum_j m_j Pi_ij v_ij . grad_i W_ij        (seed 000; seed 004 eq. 48)
+//         Pi_ij = (-alpha c_ij mu_ij + beta mu_ij^2) / rho_ij  for v_ij . r_ij < 0, else 0
+//         mu_ij = h_ij v_ij . r_ij / (r_ij^2 + eps h_ij^2), eps = 0.01    (Monaghan 1992; seed 000)
+//         div v_i = -1/rho_i sum_j m_j v_ij . grad_i W_ij               (seed 004 eq. 33 form)
+// Total energy sum_i m_i (v_i^2/2 + u_i) is conserved by these pair terms up to time
+// integration error (seed 004 sec. 9.5.3). Velocities in pass 2 are the predicted ones
+// (d2_vest) written by fix sph/astro, so the viscosity sees v at the end of the step.
+
+#include "pair_sph_astro.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "memory.h"
+#include "modify.h"
+#include "neigh_list.h"
+#include "neighbor.h"
+#include "update.h"
+#include "utils.h"
+
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+using namespace LAMMPS_NS;
+using namespace SPHAstro;
+
+PairSPHAstro::PairSPHAstro(LAMMPS *lmp) : Pair(lmp)
+{
+  single_enable = 0;
+  restartinfo = 1;
+  one_coeff = 1;
+  manybody_flag = 1;    // forces depend on densities of both partners
+  comm_forward = 6;     // rho, P, c_s, vest[3]
+  comm_reverse = 2;     // density pass: rho, nneigh; force pass: dudt, sum v.gradW
+}
+
+PairSPHAstro::~PairSPHAstro()
+{
+  if (copymode) return;
+  memory->destroy(pressure_);
+  memory->destroy(soundspeed_);
+  memory->destroy(vdotgradw_);
+  memory->destroy(divv_);
+  memory->destroy(nneigh_);
+  memory->destroy(hmax_type_);
+  if (allocated) {
+    memory->destroy(setflag);
+    memory->destroy(cutsq);
+  }
+}
+
+void PairSPHAstro::allocate()
+{
+  allocated = 1;
+  const int n = atom->ntypes + 1;
+  memory->create(setflag, n, n, "pair:setflag");
+  for (int i = 1; i < n; i++)
+    for (int j = i; j < n; j++) setflag[i][j] = 0;
+  memory->create(cutsq, n, n, "pair:cutsq");
+  memory->create(hmax_type_, n, "pair:hmax_type");
+}
+
+void PairSPHAstro::grow_work_arrays()
+{
+  if (atom->nmax <= nmax_) return;
+  nmax_ = atom->nmax;
+  memory->destroy(pressure_);
+  memory->destroy(soundspeed_);
+  memory->destroy(vdotgradw_);
+  memory->destroy(divv_);
+  memory->destroy(nneigh_);
+  memory->create(pressure_, nmax_, "pair:sph/astro:pressure");
+  memory->create(soundspeed_, nmax_, "pair:sph/astro:soundspeed");
+  memory->create(vdotgradw_, nmax_, "pair:sph/astro:vdotgradw");
+  memory->create(divv_, nmax_, "pair:sph/astro:divv");
+  memory->create(nneigh_, nmax_, "pair:sph/astro:nneigh");
+}
+
+/* ----------------------------------------------------------------------
+   pair_style sph/astro [kernel NAME] [eos ideal GAMMA | isothermal CS | polytropic K GAMMA]
+                        [viscosity classic ALPHA BETA | viscosity none] [epsilon EPS]
+------------------------------------------------------------------------- */
+
+void PairSPHAstro::settings(int narg, char **arg)
+{
+  int iarg = 0;
+  while (iarg < narg) {
+    const std::string key = arg[iarg];
+    if (key == "kernel") {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_style sph/astro kernel", error);
+      if (!kernel_from_name(arg[iarg + 1], kernel_))
+        error->all(FLERR,
+                   "pair_style sph/astro: unknown kernel '{}'; allowed: m4 (cubic), m6 "
+                   "(quintic), wendland/c2, wendland/c4",
+                   arg[iarg + 1]);
+      iarg += 2;
+    } else if (key == "eos") {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_style sph/astro eos", error);
+      const std::string model = arg[iarg + 1];
+      if (model == "ideal") {
+        if (iarg + 3 > narg) utils::missing_cmd_args(FLERR, "pair_style sph/astro eos ideal", error);
+        eos_.type = EOSType::IDEAL;
+        eos_.gamma = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+        if (!(eos_.gamma > 1.0))
+          error->all(FLERR, "pair_style sph/astro eos ideal: gamma = {} must be > 1",
+                     arg[iarg + 2]);
+        iarg += 3;
+      } else if (model == "isothermal") {
+        if (iarg + 3 > narg)
+          utils::missing_cmd_args(FLERR, "pair_style sph/astro eos isothermal", error);
+        eos_.type = EOSType::ISOTHERMAL;
+        eos_.cs = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+        if (!(eos_.cs > 0.0))
+          error->all(FLERR, "pair_style sph/astro eos isothermal: sound speed {} must be > 0",
+                     arg[iarg + 2]);
+        iarg += 3;
+      } else if (model == "polytropic") {
+        if (iarg + 4 > narg)
+          utils::missing_cmd_args(FLERR, "pair_style sph/astro eos polytropic", error);
+        eos_.type = EOSType::POLYTROPIC;
+        eos_.K = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+        eos_.gamma = utils::numeric(FLERR, arg[iarg + 3], false, lmp);
+        if (!(eos_.K > 0.0))
+          error->all(FLERR, "pair_style sph/astro eos polytropic: K = {} must be > 0",
+                     arg[iarg + 2]);
+        if (!(eos_.gamma > 1.0))
+          error->all(FLERR, "pair_style sph/astro eos polytropic: gamma = {} must be > 1",
+                     arg[iarg + 3]);
+        iarg += 4;
+      } else
+        error->all(FLERR,
+                   "pair_style sph/astro: unknown eos '{}'; allowed: ideal GAMMA, isothermal CS, "
+                   "polytropic K GAMMA",
+                   model);
+    } else if (key == "viscosity") {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_style sph/astro viscosity", error);
+      const std::string form = arg[iarg + 1];
+      if (form == "none") {
+        visc_on_ = false;
+        visc_alpha_ = visc_beta_ = 0.0;
+        iarg += 2;
+      } else if (form == "classic") {
+        if (iarg + 4 > narg)
+          utils::missing_cmd_args(FLERR, "pair_style sph/astro viscosity classic", error);
+        visc_alpha_ = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+        visc_beta_ = utils::numeric(FLERR, arg[iarg + 3], false, lmp);
+        if (visc_alpha_ < 0.0 || visc_beta_ < 0.0)
+          error->all(FLERR,
+                     "pair_style sph/astro viscosity classic: alpha = {} and beta = {} must be "
+                     ">= 0",
+                     arg[iarg + 2], arg[iarg + 3]);
+        visc_on_ = (visc_alpha_ > 0.0 || visc_beta_ > 0.0);
+        iarg += 4;
+      } else
+        error->all(FLERR,
+                   "pair_style sph/astro: unknown viscosity '{}'; allowed: classic ALPHA BETA, "
+                   "none",
+                   form);
+    } else if (key == "epsilon") {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_style sph/astro epsilon", error);
+      visc_eps_ = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(visc_eps_ > 0.0))
+        error->all(FLERR, "pair_style sph/astro: epsilon = {} must be > 0", arg[iarg + 1]);
+      iarg += 2;
+    } else
+      error->all(FLERR,
+                 "pair_style sph/astro: unknown keyword '{}'; allowed: kernel, eos, viscosity, "
+                 "epsilon",
+                 key);
+  }
+  kernel_radius_ = SPHAstro::kernel_radius(kernel_);
+}
+
+/* ----------------------------------------------------------------------
+   pair_coeff * *  (all pairs of SPH particle types; no parameters)
+------------------------------------------------------------------------- */
+
+void PairSPHAstro::coeff(int narg, char **arg)
+{
+  if (narg != 2)
+    error->all(FLERR,
+               "pair_coeff for pair_style sph/astro takes only two type ranges (got {} "
+               "arguments): the physics is set by pair_style",
+               narg);
+  if (!allocated) allocate();
+  int ilo, ihi, jlo, jhi;
+  utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
+  utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
+  int count = 0;
+  for (int i = ilo; i <= ihi; i++)
+    for (int j = MAX(jlo, i); j <= jhi; j++) {
+      setflag[i][j] = 1;
+      count++;
+    }
+  if (count == 0) error->all(FLERR, "pair_coeff sph/astro: type ranges {} {} select no pair", arg[0], arg[1]);
+}
+
+void PairSPHAstro::init_style()
+{
+  if (!find_state(lmp, state_))
+    error->all(FLERR,
+               "pair_style sph/astro needs the SPH per-particle state: define fix sph/astro "
+               "(it creates fix {})",
+               STATE_FIX_ID);
+  if (modify->get_fix_by_style("^sph/astro$").empty())
+    error->all(FLERR,
+               "pair_style sph/astro requires fix sph/astro: it integrates u and predicts the "
+               "velocities the viscosity uses");
+  if (domain->dimension != 2 && domain->dimension != 3)
+    error->all(FLERR, "pair_style sph/astro: dimension {} not supported", domain->dimension);
+
+  // every particle needs a positive mass and smoothing length; the list cutoffs are set
+  // by the largest h of each type
+  const int nlocal = atom->nlocal;
+  const int ntypes = atom->ntypes;
+  const double *h = atom->dvector[state_.h];
+  const double *rmass = atom->rmass;
+  const double *mass = atom->mass;
+  const int *type = atom->type;
+  std::vector<double> hmax_local(ntypes + 1, 0.0);
+  for (int i = 0; i < nlocal; i++) {
+    const double mi = rmass ? rmass[i] : mass[type[i]];
+    if (!(mi > 0.0) || !std::isfinite(mi))
+      error->one(FLERR, "pair_style sph/astro: atom {} has mass {}; the mass must be > 0",
+                 atom->tag[i], mi);
+    if (!(h[i] > 0.0) || !std::isfinite(h[i]))
+      error->one(FLERR,
+                 "pair_style sph/astro: atom {} has smoothing length h = {}; h must be > 0 "
+                 "(set it with: set group all d_h VALUE)",
+                 atom->tag[i], h[i]);
+    hmax_local[type[i]] = MAX(hmax_local[type[i]], h[i]);
+  }
+  MPI_Allreduce(hmax_local.data(), hmax_type_, ntypes + 1, MPI_DOUBLE, MPI_MAX, world);
+  double hmax = 0.0;
+  for (int t = 1; t <= ntypes; t++) hmax = MAX(hmax, hmax_type_[t]);
+  if (hmax <= 0.0)
+    error->all(FLERR, "pair_style sph/astro: no particle has h > 0 (set group all d_h VALUE)");
+
+  const double support = kernel_radius_ * hmax;
+  if (neighbor->skin > support && comm->me == 0)
+    error->warning(FLERR,
+                   "pair_style sph/astro: neighbor skin {} exceeds the kernel support {}: the "
+                   "neighbour lists hold many non-neighbours; a skin of 0.1-0.3 x support is "
+                   "usual",
+                   neighbor->skin, support);
+
+  neighbor->add_request(this);
+}
+
+double PairSPHAstro::init_one(int i, int j)
+{
+  if (setflag[i][j] == 0)
+    error->all(FLERR, "pair_style sph/astro: pair_coeff for types {} {} is not set", i, j);
+  // a type without particles yet still gets the cutoff of its partner
+  const double hi = hmax_type_[i] > 0.0 ? hmax_type_[i] : hmax_type_[j];
+  const double hj = hmax_type_[j] > 0.0 ? hmax_type_[j] : hmax_type_[i];
+  return kernel_radius_ * 0.5 * (hi + hj);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairSPHAstro::equation_of_state()
+{
+  const int nlocal = atom->nlocal;
+  const double *rho = atom->dvector[state_.rho];
+  const double *h = atom->dvector[state_.h];
+  const double *uest = atom->dvector[state_.uest];
+  const tagint *tag = atom->tag;
+  const int *type = atom->type;
+  for (int i = 0; i < nlocal; i++) {
+    if (!(rho[i] > 0.0) || !std::isfinite(rho[i]))
+      error->one(FLERR, "pair_style sph/astro: atom {} has density {} (position not finite?)",
+                 tag[i], rho[i]);
+    if (h[i] > hmax_type_[type[i]])
+      error->one(FLERR,
+                 "pair_style sph/astro: atom {} has h = {} larger than the h = {} the neighbour "
+                 "lists of its type were built for; h changed during a run",
+                 tag[i], h[i], hmax_type_[type[i]]);
+    const double u = uest[i];
+    if (eos_.uses_energy() && (!(u >= 0.0) || !std::isfinite(u)))
+      error->one(FLERR,
+                 "pair_style sph/astro: atom {} has specific internal energy u = {}; u must be "
+                 "finite and >= 0",
+                 tag[i], u);
+    eos_.pressure_soundspeed(rho[i], u, pressure_[i], soundspeed_[i]);
+  }
+}
+
+template <class KERNEL, int DIM, bool ENERGY, bool VISC> void PairSPHAstro::eval()
+{
+  using K = Kernel<KERNEL, DIM>;
+  double **x = atom->x;
+  double **f = atom->f;
+  const int *type = atom->type;
+  const double *rmass = atom->rmass;
+  const double *mass = atom->mass;
+  double *rho = atom->dvector[state_.rho];
+  const double *h = atom->dvector[state_.h];
+  double *dudt = atom->dvector[state_.dudt];
+  double **vest = atom->darray[state_.vest];
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  const int newton_pair = force->newton_pair;
+  const int nzero = newton_pair ? nall : nlocal;
+
+  const int inum = list->inum;
+  const int *ilist = list->ilist;
+  const int *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+
+  const double sigma = K::sigma();
+  const double R2 = K::radius * K::radius;
+  const double w0 = K::w(0.0);
+
+  // pass 1: density
+
+  for (int i = 0; i < nzero; i++) {
+    rho[i] = 0.0;
+    nneigh_[i] = 0.0;
+  }
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
+    const double hi = h[i];
+    const double mi = rmass ? rmass[i] : mass[type[i]];
+    double rhoi = mi * sigma * inv_h_pow_dim<DIM>(1.0 / hi) * w0;
+    double ni = 0.0;
+    const int *jlist = firstneigh[i];
+    const int jnum = numneigh[i];
+    for (int jj = 0; jj < jnum; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      const double hij = 0.5 * (hi + h[j]);
+      if (r2 >= R2 * hij * hij) continue;
+      const double hinv = 1.0 / hij;
+      const double wij = sigma * inv_h_pow_dim<DIM>(hinv) * K::w(std::sqrt(r2) * hinv);
+      const double mj = rmass ? rmass[j] : mass[type[j]];
+      rhoi += mj * wij;
+      ni += 1.0;
+      if (newton_pair || j < nlocal) {
+        rho[j] += mi * wij;
+        nneigh_[j] += 1.0;
+      }
+    }
+    rho[i] += rhoi;
+    nneigh_[i] += ni;
+  }
+  if (newton_pair) {
+    comm_stage_ = Stage::DENSITY;
+    comm->reverse_comm(this);
+  }
+  equation_of_state();
+  comm->forward_comm(this);
+
+  // pass 2: accelerations, du/dt, div v
+
+  const double alpha = visc_alpha_, beta = visc_beta_, eps = visc_eps_;
+  for (int i = 0; i < nzero; i++) {
+    vdotgradw_[i] = 0.0;
+    if (ENERGY) dudt[i] = 0.0;
+  }
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
+    const double vxi = vest[i][0], vyi = vest[i][1], vzi = vest[i][2];
+    const double hi = h[i];
+    const double mi = rmass ? rmass[i] : mass[type[i]];
+    const double rhoi = rho[i];
+    const double prhoi = pressure_[i] / (rhoi * rhoi);
+    const double ci = soundspeed_[i];
+    double fxi = 0.0, fyi = 0.0, fzi = 0.0, vgwi = 0.0, heati = 0.0;
+    const int *jlist = firstneigh[i];
+    const int jnum = numneigh[i];
+    for (int jj = 0; jj < jnum; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      const double hij = 0.5 * (hi + h[j]);
+      if (r2 >= R2 * hij * hij || r2 == 0.0) continue;    // grad W(0) = 0
+      const double r = std::sqrt(r2);
+      const double hinv = 1.0 / hij;
+      // (dW/dr) / r: grad_i W_ij = dwdr_r * r_ij
+      const double dwdr_r = sigma * inv_h_pow_dim<DIM>(hinv) * hinv * K::dw(r * hinv) / r;
+      const double mj = rmass ? rmass[j] : mass[type[j]];
+      const double rhoj = rho[j];
+      const double dvx = vxi - vest[j][0], dvy = vyi - vest[j][1], dvz = vzi - vest[j][2];
+      const double vdotr = dvx * dx + dvy * dy + dvz * dz;
+      double visc = 0.0;
+      if (VISC && vdotr < 0.0) {
+        const double mu = hij * vdotr / (r2 + eps * hij * hij);
+        visc = (-alpha * 0.5 * (ci + soundspeed_[j]) * mu + beta * mu * mu) / (0.5 * (rhoi + rhoj));
+      }
+      const double fpair = -mi * mj * (prhoi + pressure_[j] / (rhoj * rhoj) + visc) * dwdr_r;
+      const double vgw = vdotr * dwdr_r;
+      fxi += dx * fpair;
+      fyi += dy * fpair;
+      fzi += dz * fpair;
+      vgwi += mj * vgw;
+      if (ENERGY && VISC) heati += 0.5 * mj * visc * vgw;
+      if (newton_pair || j < nlocal) {
+        f[j][0] -= dx * fpair;
+        f[j][1] -= dy * fpair;
+        f[j][2] -= dz * fpair;
+        vdotgradw_[j] += mi * vgw;
+        if (ENERGY && VISC) dudt[j] += 0.5 * mi * visc * vgw;
+      }
+      if (evflag) ev_tally(i, j, nlocal, newton_pair, 0.0, 0.0, fpair, dx, dy, dz);
+    }
+    f[i][0] += fxi;
+    f[i][1] += fyi;
+    f[i][2] += fzi;
+    vdotgradw_[i] += vgwi;
+    if (ENERGY) dudt[i] += heati;
+  }
+  if (newton_pair) {
+    comm_stage_ = Stage::FORCE;
+    comm->reverse_comm(this);
+  }
+  for (int i = 0; i < nlocal; i++) {
+    divv_[i] = -vdotgradw_[i] / rho[i];
+    if (ENERGY) dudt[i] += pressure_[i] / (rho[i] * rho[i]) * vdotgradw_[i];
+  }
+}
+
+template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
+{
+  const bool energy = eos_.uses_energy();
+  if (energy && visc_on_)
+    eval<KERNEL, DIM, true, true>();
+  else if (energy)
+    eval<KERNEL, DIM, true, false>();
+  else if (visc_on_)
+    eval<KERNEL, DIM, false, true>();
+  else
+    eval<KERNEL, DIM, false, false>();
+}
+
+template <class KERNEL> void PairSPHAstro::dispatch_dimension()
+{
+  if (domain->dimension == 2)
+    dispatch_physics<KERNEL, 2>();
+  else
+    dispatch_physics<KERNEL, 3>();
+}
+
+void PairSPHAstro::compute(int eflag, int vflag)
+{
+  ev_init(eflag, vflag);
+  grow_work_arrays();
+  switch (kernel_) {
+    case KernelType::CUBIC: dispatch_dimension<KernelCubic>(); break;
+    case KernelType::QUINTIC: dispatch_dimension<KernelQuintic>(); break;
+    case KernelType::WENDLAND_C2: dispatch_dimension<KernelWendlandC2>(); break;
+    case KernelType::WENDLAND_C4: dispatch_dimension<KernelWendlandC4>(); break;
+  }
+  if (vflag_fdotr) virial_fdotr_compute();
+}
+
+/* ---------------------------------------------------------------------- */
+
+int PairSPHAstro::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/,
+                                    int * /*pbc*/)
+{
+  const double *rho = atom->dvector[state_.rho];
+  double **vest = atom->darray[state_.vest];
+  int m = 0;
+  for (int k = 0; k < n; k++) {
+    const int j = list[k];
+    buf[m++] = rho[j];
+    buf[m++] = pressure_[j];
+    buf[m++] = soundspeed_[j];
+    buf[m++] = vest[j][0];
+    buf[m++] = vest[j][1];
+    buf[m++] = vest[j][2];
+  }
+  return m;
+}
+
+void PairSPHAstro::unpack_forward_comm(int n, int first, double *buf)
+{
+  double *rho = atom->dvector[state_.rho];
+  double **vest = atom->darray[state_.vest];
+  int m = 0;
+  for (int i = first; i < first + n; i++) {
+    rho[i] = buf[m++];
+    pressure_[i] = buf[m++];
+    soundspeed_[i] = buf[m++];
+    vest[i][0] = buf[m++];
+    vest[i][1] = buf[m++];
+    vest[i][2] = buf[m++];
+  }
+}
+
+int PairSPHAstro::pack_reverse_comm(int n, int first, double *buf)
+{
+  int m = 0;
+  if (comm_stage_ == Stage::DENSITY) {
+    const double *rho = atom->dvector[state_.rho];
+    for (int i = first; i < first + n; i++) {
+      buf[m++] = rho[i];
+      buf[m++] = nneigh_[i];
+    }
+  } else {
+    const double *dudt = atom->dvector[state_.dudt];
+    for (int i = first; i < first + n; i++) {
+      buf[m++] = dudt[i];
+      buf[m++] = vdotgradw_[i];
+    }
+  }
+  return m;
+}
+
+void PairSPHAstro::unpack_reverse_comm(int n, int *list, double *buf)
+{
+  int m = 0;
+  if (comm_stage_ == Stage::DENSITY) {
+    double *rho = atom->dvector[state_.rho];
+    for (int k = 0; k < n; k++) {
+      const int j = list[k];
+      rho[j] += buf[m++];
+      nneigh_[j] += buf[m++];
+    }
+  } else {
+    double *dudt = atom->dvector[state_.dudt];
+    for (int k = 0; k < n; k++) {
+      const int j = list[k];
+      dudt[j] += buf[m++];
+      vdotgradw_[j] += buf[m++];
+    }
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairSPHAstro::write_restart(FILE *fp)
+{
+  write_restart_settings(fp);
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) fwrite(&setflag[i][j], sizeof(int), 1, fp);
+}
+
+void PairSPHAstro::read_restart(FILE *fp)
+{
+  read_restart_settings(fp);
+  allocate();
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      if (comm->me == 0) utils::sfread(FLERR, &setflag[i][j], sizeof(int), 1, fp, nullptr, error);
+      MPI_Bcast(&setflag[i][j], 1, MPI_INT, 0, world);
+    }
+}
+
+void PairSPHAstro::write_restart_settings(FILE *fp)
+{
+  int ival[3] = {static_cast<int>(kernel_), static_cast<int>(eos_.type), visc_on_ ? 1 : 0};
+  double dval[6] = {eos_.gamma, eos_.cs, eos_.K, visc_alpha_, visc_beta_, visc_eps_};
+  fwrite(ival, sizeof(int), 3, fp);
+  fwrite(dval, sizeof(double), 6, fp);
+}
+
+void PairSPHAstro::read_restart_settings(FILE *fp)
+{
+  int ival[3];
+  double dval[6];
+  if (comm->me == 0) {
+    utils::sfread(FLERR, ival, sizeof(int), 3, fp, nullptr, error);
+    utils::sfread(FLERR, dval, sizeof(double), 6, fp, nullptr, error);
+  }
+  MPI_Bcast(ival, 3, MPI_INT, 0, world);
+  MPI_Bcast(dval, 6, MPI_DOUBLE, 0, world);
+  kernel_ = static_cast<KernelType>(ival[0]);
+  eos_.type = static_cast<EOSType>(ival[1]);
+  visc_on_ = ival[2] != 0;
+  eos_.gamma = dval[0];
+  eos_.cs = dval[1];
+  eos_.K = dval[2];
+  visc_alpha_ = dval[3];
+  visc_beta_ = dval[4];
+  visc_eps_ = dval[5];
+  kernel_radius_ = SPHAstro::kernel_radius(kernel_);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void *PairSPHAstro::extract(const char *name, int &dim)
+{
+  dim = 0;
+  if (strcmp(name, "kernel_support") == 0) return (void *) &kernel_radius_;
+  if (strcmp(name, "alpha") == 0) return (void *) &visc_alpha_;
+  if (strcmp(name, "beta") == 0) return (void *) &visc_beta_;
+  return nullptr;
+}
+
+void *PairSPHAstro::extract_peratom(const char *name, int &ncol)
+{
+  ncol = 0;
+  if (strcmp(name, "pressure") == 0) return (void *) pressure_;
+  if (strcmp(name, "soundspeed") == 0) return (void *) soundspeed_;
+  if (strcmp(name, "divv") == 0) return (void *) divv_;
+  if (strcmp(name, "nneigh") == 0) return (void *) nneigh_;
+  return nullptr;
+}
+
+double PairSPHAstro::memory_usage()
+{
+  return 5.0 * nmax_ * sizeof(double) + Pair::memory_usage();
+}

@@ -1,0 +1,86 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   SPH-ASTRO: astrophysical smoothed particle hydrodynamics for LAMMPS
+------------------------------------------------------------------------- */
+
+#ifdef PAIR_CLASS
+// clang-format off
+PairStyle(sph/astro,PairSPHAstro);
+// clang-format on
+#else
+
+#ifndef LMP_PAIR_SPH_ASTRO_H
+#define LMP_PAIR_SPH_ASTRO_H
+
+#include "pair.h"
+#include "sph_astro_eos.h"
+#include "sph_astro_kernel.h"
+#include "sph_astro_state.h"
+
+namespace LAMMPS_NS {
+
+class PairSPHAstro : public Pair {
+ public:
+  PairSPHAstro(class LAMMPS *);
+  ~PairSPHAstro() override;
+
+  void compute(int, int) override;
+  void settings(int, char **) override;
+  void coeff(int, char **) override;
+  void init_style() override;
+  double init_one(int, int) override;
+  void write_restart(FILE *) override;
+  void read_restart(FILE *) override;
+  void write_restart_settings(FILE *) override;
+  void read_restart_settings(FILE *) override;
+
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
+  int pack_reverse_comm(int, int, double *) override;
+  void unpack_reverse_comm(int, int *, double *) override;
+
+  void *extract(const char *, int &) override;
+  void *extract_peratom(const char *, int &) override;
+  double memory_usage() override;
+
+  // physics settings read by the package's fixes and computes
+  const SPHAstro::EOS &eos() const { return eos_; }
+  double kernel_support() const { return kernel_radius_; }
+  double alpha() const { return visc_alpha_; }
+  double beta() const { return visc_beta_; }
+  bool has_viscosity() const { return visc_on_; }
+
+ protected:
+  SPHAstro::KernelType kernel_ = SPHAstro::KernelType::CUBIC;
+  double kernel_radius_ = 2.0;
+  SPHAstro::EOS eos_;
+  bool visc_on_ = true;
+  double visc_alpha_ = 1.0, visc_beta_ = 2.0, visc_eps_ = 0.01;
+
+  SPHAstro::StateIndex state_;
+  // largest h of each atom type at init: the cutoff of types (i,j) is
+  // kernel_radius * (hmax_i + hmax_j) / 2, the support of h_ij for the widest pair
+  double *hmax_type_ = nullptr;
+
+  // per-atom work arrays (owned + ghost), grown to atom->nmax
+  int nmax_ = 0;
+  double *pressure_ = nullptr;      // P
+  double *soundspeed_ = nullptr;    // c_s
+  double *vdotgradw_ = nullptr;     // sum_j m_j v_ij . grad_i W_ij  (= -rho_i div v_i)
+  double *divv_ = nullptr;          // div v
+  double *nneigh_ = nullptr;        // neighbours inside the kernel support
+
+  enum class Stage { DENSITY, FORCE };
+  Stage comm_stage_ = Stage::DENSITY;
+
+  void allocate();
+  void grow_work_arrays();
+  template <class KERNEL, int DIM, bool ENERGY, bool VISC> void eval();
+  template <class KERNEL, int DIM> void dispatch_physics();
+  template <class KERNEL> void dispatch_dimension();
+  void equation_of_state();
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

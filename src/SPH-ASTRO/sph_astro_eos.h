@@ -1,0 +1,65 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   SPH-ASTRO: equations of state
+------------------------------------------------------------------------- */
+
+// Pressure P(rho, u) and sound speed c_s for the gas models of the package.
+//   ideal:      P = (gamma - 1) rho u,  c_s^2 = gamma P / rho       (seed 000 "entropy equation";
+//               seed 004 sec. 9.2; u is the specific internal energy)
+//   isothermal: P = c_s^2 rho, c_s constant                         (seed 000 "pressure")
+//   polytropic: P = K rho^gamma, c_s^2 = gamma P / rho              (seed 001 "polytropic EOS";
+//               seed 004 sec. 9.2)
+// Only the ideal gas depends on u, so only it needs (and integrates) the energy equation.
+
+#ifndef LMP_SPH_ASTRO_EOS_H
+#define LMP_SPH_ASTRO_EOS_H
+
+#include <cmath>
+
+namespace SPHAstro {
+
+enum class EOSType { IDEAL, ISOTHERMAL, POLYTROPIC };
+
+struct EOS {
+  EOSType type = EOSType::IDEAL;
+  double gamma = 5.0 / 3.0;    // ideal and polytropic
+  double cs = 1.0;             // isothermal sound speed
+  double K = 1.0;              // polytropic constant
+
+  bool uses_energy() const { return type == EOSType::IDEAL; }
+
+  // pressure and sound speed from density and specific internal energy
+  inline void pressure_soundspeed(double rho, double u, double &P, double &c) const
+  {
+    switch (type) {
+      case EOSType::IDEAL:
+        P = (gamma - 1.0) * rho * u;
+        c = std::sqrt(gamma * (gamma - 1.0) * (u > 0.0 ? u : 0.0));
+        return;
+      case EOSType::ISOTHERMAL:
+        P = cs * cs * rho;
+        c = cs;
+        return;
+      case EOSType::POLYTROPIC:
+        P = K * std::pow(rho, gamma);
+        c = std::sqrt(gamma * P / rho);
+        return;
+    }
+  }
+
+  // specific internal energy consistent with the EOS (for energy bookkeeping of the
+  // barotropic models: u = P / ((gamma-1) rho) for a polytrope, 0 for the isothermal gas
+  // whose thermal energy is not a conserved quantity)
+  inline double energy_of(double rho, double u) const
+  {
+    switch (type) {
+      case EOSType::IDEAL: return u;
+      case EOSType::ISOTHERMAL: return 0.0;
+      case EOSType::POLYTROPIC: return K * std::pow(rho, gamma - 1.0) / (gamma - 1.0);
+    }
+    return u;
+  }
+};
+
+}    // namespace SPHAstro
+
+#endif

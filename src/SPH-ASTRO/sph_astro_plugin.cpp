@@ -1,0 +1,66 @@
+/* ----------------------------------------------------------------------
+   SPH-ASTRO plugin entry point: registers the package's styles with LAMMPS
+------------------------------------------------------------------------- */
+
+#include "lammpsplugin.h"
+#include "version.h"
+
+#include "compute_sph_astro_atom.h"
+#include "compute_sph_astro_global.h"
+#include "fix_sph_astro.h"
+#include "pair_sph_astro.h"
+
+using namespace LAMMPS_NS;
+
+static Pair *pair_sph_astro_creator(LAMMPS *lmp)
+{
+  return new PairSPHAstro(lmp);
+}
+
+static Fix *fix_sph_astro_creator(LAMMPS *lmp, int narg, char **arg)
+{
+  return new FixSPHAstro(lmp, narg, arg);
+}
+
+static Compute *compute_sph_astro_atom_creator(LAMMPS *lmp, int narg, char **arg)
+{
+  return new ComputeSPHAstroAtom(lmp, narg, arg);
+}
+
+static Compute *compute_sph_astro_global_creator(LAMMPS *lmp, int narg, char **arg)
+{
+  return new ComputeSPHAstroGlobal(lmp, narg, arg);
+}
+
+extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
+{
+  lammpsplugin_t plugin;
+  auto register_plugin = (lammpsplugin_regfunc) regfunc;
+
+  plugin.version = LAMMPS_VERSION;
+  plugin.author = "SPH-ASTRO developers";
+  plugin.handle = handle;
+
+  plugin.style = "pair";
+  plugin.name = "sph/astro";
+  plugin.info = "SPH-ASTRO hydrodynamics: density, EOS, pressure force, artificial viscosity";
+  plugin.creator.v1 = (lammpsplugin_factory1 *) &pair_sph_astro_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.style = "fix";
+  plugin.name = "sph/astro";
+  plugin.info = "SPH-ASTRO kick-drift-kick integrator with adaptive timestep";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_sph_astro_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.style = "compute";
+  plugin.name = "sph/astro/atom";
+  plugin.info = "SPH-ASTRO per-atom density, h, pressure, sound speed, u, neighbours";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &compute_sph_astro_atom_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.name = "sph/astro/global";
+  plugin.info = "SPH-ASTRO mass, momentum, angular momentum, energies, energy error";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &compute_sph_astro_global_creator;
+  (*register_plugin)(&plugin, lmp);
+}

@@ -1,0 +1,69 @@
+/* ----------------------------------------------------------------------
+   SPH-ASTRO: the per-particle state shared by the package's styles
+------------------------------------------------------------------------- */
+
+#include "sph_astro_state.h"
+
+#include "atom.h"
+#include "error.h"
+#include "fix.h"
+#include "lammps.h"
+#include "modify.h"
+
+#include <cstring>
+#include <string>
+
+using namespace LAMMPS_NS;
+
+namespace SPHAstro {
+
+const char *state_fix_arguments()
+{
+  return "property/atom d_rho d_h d_u d_dudt d_uest d2_vest 3 ghost yes";
+}
+
+bool find_state(LAMMPS *lmp, StateIndex &idx)
+{
+  Atom *atom = lmp->atom;
+  int flag, cols;
+  idx.rho = atom->find_custom("rho", flag, cols);
+  if (idx.rho < 0 || flag != 1 || cols != 0) return false;
+  idx.h = atom->find_custom("h", flag, cols);
+  if (idx.h < 0 || flag != 1 || cols != 0) return false;
+  idx.u = atom->find_custom("u", flag, cols);
+  if (idx.u < 0 || flag != 1 || cols != 0) return false;
+  idx.dudt = atom->find_custom("dudt", flag, cols);
+  if (idx.dudt < 0 || flag != 1 || cols != 0) return false;
+  idx.uest = atom->find_custom("uest", flag, cols);
+  if (idx.uest < 0 || flag != 1 || cols != 0) return false;
+  idx.vest = atom->find_custom("vest", flag, cols);
+  if (idx.vest < 0 || flag != 1 || cols != 3) return false;
+  return true;
+}
+
+Fix *ensure_state(LAMMPS *lmp, const char *caller)
+{
+  Modify *modify = lmp->modify;
+  Fix *fix = modify->get_fix_by_id(STATE_FIX_ID);
+  if (!fix) {
+    StateIndex idx;
+    int flag, cols;
+    for (const char *name : {"rho", "h", "u", "dudt", "uest", "vest"})
+      if (lmp->atom->find_custom(name, flag, cols) >= 0)
+        lmp->error->all(FLERR,
+                        "{}: a custom per-atom property d_{} already exists outside fix {}; "
+                        "SPH-ASTRO owns the names d_rho d_h d_u d_dudt d_uest d2_vest",
+                        caller, name, STATE_FIX_ID);
+    fix = modify->add_fix(std::string(STATE_FIX_ID) + " all " + state_fix_arguments());
+  } else {
+    StateIndex idx;
+    if (strcmp(fix->style, "property/atom") != 0 || !find_state(lmp, idx))
+      lmp->error->all(FLERR,
+                      "{}: fix {} exists but is not 'fix {} all {}'; remove it or define it "
+                      "with exactly those arguments",
+                      caller, STATE_FIX_ID, STATE_FIX_ID, state_fix_arguments());
+  }
+  return fix;
+}
+
+}    // namespace SPHAstro

@@ -1,0 +1,49 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   SPH-ASTRO: the per-particle state shared by the package's styles
+------------------------------------------------------------------------- */
+
+// LAMMPS plugins cannot add atom styles, so the SPH state lives in custom per-atom
+// properties owned by one "fix property/atom" with the fixed ID SPH_ASTRO_STATE. That fix
+// gives migration, ghost (border) communication, restart, read_data/write_data sections,
+// the set command (set ... d_u 2.5), dump custom (d_rho) and Python access by name.
+//
+//   d_rho     density                               (computed by pair sph/astro)
+//   d_h       smoothing length h (kernel support = kernel radius * h)
+//   d_u       specific internal energy
+//   d_dudt    du/dt                                 (computed by pair sph/astro)
+//   d_uest    u predicted to the end of the step    (set by fix sph/astro)
+//   d2_vest 3 velocity predicted to the end of the step (set by fix sph/astro)
+//
+// Mass is the per-type mass, or the per-atom mass where the atom style has one.
+
+#ifndef LMP_SPH_ASTRO_STATE_H
+#define LMP_SPH_ASTRO_STATE_H
+
+namespace LAMMPS_NS {
+class LAMMPS;
+class Fix;
+}    // namespace LAMMPS_NS
+
+namespace SPHAstro {
+
+constexpr const char *STATE_FIX_ID = "SPH_ASTRO_STATE";
+
+// indices into atom->dvector / atom->darray
+struct StateIndex {
+  int rho = -1, h = -1, u = -1, dudt = -1, uest = -1, vest = -1;
+};
+
+// the "fix property/atom" arguments that define the state
+const char *state_fix_arguments();
+
+// create the state fix if it does not exist yet, or check that an existing one (for
+// instance defined by the sph/astro/state command before read_data) is complete;
+// caller names the command for error messages
+LAMMPS_NS::Fix *ensure_state(LAMMPS_NS::LAMMPS *lmp, const char *caller);
+
+// look up the state columns; returns false if the state fix was never created
+bool find_state(LAMMPS_NS::LAMMPS *lmp, StateIndex &idx);
+
+}    // namespace SPHAstro
+
+#endif
