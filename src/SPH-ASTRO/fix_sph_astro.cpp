@@ -79,6 +79,13 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg
                  key);
     iarg += 2;
   }
+  if (atom->rho_flag || atom->esph_flag)
+    error->all(FLERR,
+               "fix sph/astro: atom_style sph (LAMMPS' SPH package) has its own density and "
+               "energy that SPH-ASTRO would not use; use atom_style atomic (the SPH-ASTRO state "
+               "is d_rho, d_h, d_u, ...)");
+  if (!atom->tag_enable)
+    error->all(FLERR, "fix sph/astro needs atom IDs (atom_modify id yes) to report atoms");
   if (dtmin_ > 0.0 && dtmax_ > 0.0 && dtmin_ > dtmax_)
     error->all(FLERR, "fix sph/astro: dtmin {} is larger than dtmax {}", dtmin_, dtmax_);
 }

@@ -9,6 +9,7 @@
 #include "compute_sph_astro_global.h"
 #include "fix_sph_astro.h"
 #include "pair_sph_astro.h"
+#include "sph_astro_state_command.h"
 
 using namespace LAMMPS_NS;
 
@@ -30,6 +31,11 @@ static Compute *compute_sph_astro_atom_creator(LAMMPS *lmp, int narg, char **arg
 static Compute *compute_sph_astro_global_creator(LAMMPS *lmp, int narg, char **arg)
 {
   return new ComputeSPHAstroGlobal(lmp, narg, arg);
+}
+
+static Command *state_command_creator(LAMMPS *lmp)
+{
+  return new SPHAstroStateCommand(lmp);
 }
 
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
@@ -62,5 +68,11 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "sph/astro/global";
   plugin.info = "SPH-ASTRO mass, momentum, angular momentum, energies, energy error";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &compute_sph_astro_global_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.style = "command";
+  plugin.name = "sph/astro/state";
+  plugin.info = "SPH-ASTRO: define the per-particle state now (before read_data)";
+  plugin.creator.v1 = (lammpsplugin_factory1 *) &state_command_creator;
   (*register_plugin)(&plugin, lmp);
 }

@@ -1,0 +1,305 @@
+// LAMMPS-driven tests of the SPH-ASTRO styles through the LAMMPS C++ library interface:
+// conservation, time-integration order, restart, data files, per-atom output and the
+// errors for bad input.
+
+#include "lammps_fixture.h"
+
+#include <cmath>
+#include <cstdio>
+
+using namespace sph_astro_test;
+using LAMMPS_NS::LAMMPS;
+
+namespace {
+const char *PAIR = "sph/astro kernel m4 eos ideal $(5.0/3.0) viscosity classic 1.0 2.0";
+enum { MASS, PX, PY, PZ, LX, LY, LZ, EKIN, ETHERM, EPOT, ETOT, DEREL };
+}    // namespace
+
+TEST(PairSPHAstro, ForcesSumToZeroAndMomentumIsConserved)
+{
+  auto lmp = open_lammps();
+  gas(lmp, "ball", 6, PAIR, "sph/astro courant 0.3");
+  commands(lmp, {"velocity all zero linear", "velocity all zero angular", "run 0"});
+  // Newton's third law pair by pair: the total force vanishes to round-off
+  double fsum[3] = {0, 0, 0}, fabs_sum = 0;
+  for (int i = 0; i < lmp->atom->nlocal; i++)
+    for (int d = 0; d < 3; d++) {
+      fsum[d] += lmp->atom->f[i][d];
+      fabs_sum += std::fabs(lmp->atom->f[i][d]);
+    }
+  ASSERT_GT(fabs_sum, 0.0);
+  for (double fd : fsum) EXPECT_LT(std::fabs(fd), 1e-13 * fabs_sum);
+
+  const auto start = global_vector(lmp, "sum", 12);
+  commands(lmp, {"run 200"});
+  const auto end = global_vector(lmp, "sum", 12);
+  // momentum and angular momentum stay at round-off (they start at zero)
+  double pscale = 0;
+  for (int i = 0; i < lmp->atom->nlocal; i++)
+    pscale += 0.25 * std::sqrt(lmp->atom->v[i][0] * lmp->atom->v[i][0] +
+                               lmp->atom->v[i][1] * lmp->atom->v[i][1] +
+                               lmp->atom->v[i][2] * lmp->atom->v[i][2]);
+  ASSERT_GT(pscale, 0.0);
+  for (int k : {PX, PY, PZ}) EXPECT_LT(std::fabs(end[k] - start[k]), 1e-12 * pscale) << k;
+  for (int k : {LX, LY, LZ}) EXPECT_LT(std::fabs(end[k] - start[k]), 1e-11 * pscale) << k;
+  EXPECT_DOUBLE_EQ(end[MASS], start[MASS]);
+  // the ball expands: kinetic energy grows from thermal energy, the total stays
+  EXPECT_GT(end[EKIN], 10 * start[EKIN]);
+  EXPECT_LT(std::fabs(end[DEREL]), 1e-3);
+}
+
+// total energy error after a fixed time with fixed dt; second order: halving dt cuts it by 4
+static double energy_error(double dt)
+{
+  auto lmp = open_lammps();
+  gas(lmp, "ball", 6, PAIR, "sph/astro dt fixed");
+  const int nsteps = static_cast<int>(std::lround(0.4 / dt));
+  commands(lmp, {"timestep " + std::to_string(dt), "thermo " + std::to_string(nsteps),
+                 "run " + std::to_string(nsteps)});
+  const auto end = global_vector(lmp, "sum", 12);
+  return std::fabs(end[DEREL]);
+}
+
+TEST(FixSPHAstro, EnergyErrorIsSecondOrderInTimestep)
+{
+  const double e1 = energy_error(0.02), e2 = energy_error(0.01), e3 = energy_error(0.005);
+  ASSERT_GT(e3, 0.0);
+  EXPECT_LT(e1, 1e-2);
+  EXPECT_NEAR(e1 / e2, 4.0, 1.0) << e1 << " " << e2 << " " << e3;
+  EXPECT_NEAR(e2 / e3, 4.0, 1.0) << e1 << " " << e2 << " " << e3;
+}
+
+TEST(FixSPHAstro, AdaptiveTimestepFollowsCourantCriterion)
+{
+  auto lmp = open_lammps();
+  gas(lmp, "box", 3, PAIR, "sph/astro courant 0.2 force 0.3");
+  commands(lmp, {"velocity all set 0 0 0", "set group all d_u 1.0", "run 0"});
+  // uniform gas at rest: dt = C h / (c (1 + 1.2 alpha)), c^2 = gamma (gamma-1) u
+  const double h = 1.2 * std::cbrt(0.25);
+  const double c = std::sqrt(5.0 / 3.0 * 2.0 / 3.0);
+  const double expected = 0.2 * h / (c * (1.0 + 1.2 * 1.0));
+  // div v and the force of a slightly disordered lattice lower it a little
+  EXPECT_LE(lmp->update->dt, expected * 1.0000001);
+  EXPECT_GT(lmp->update->dt, 0.8 * expected);
+}
+
+TEST(FixSPHAstro, StopsAtTend)
+{
+  auto lmp = open_lammps();
+  gas(lmp, "box", 3, PAIR, "sph/astro tend 0.0375");
+  commands(lmp, {"run 100000"});
+  EXPECT_NEAR(lmp->update->atime + (lmp->update->ntimestep - lmp->update->atimestep) *
+                                       lmp->update->dt,
+              0.0375, 1e-12);
+  EXPECT_LT(lmp->update->ntimestep, 1000);
+}
+
+TEST(ComputeSPHAstroAtom, UniformDensityAndPressure)
+{
+  auto lmp = open_lammps();
+  gas(lmp, "box", 4, PAIR, "sph/astro", 1.0, 0.0);
+  commands(lmp, {"set group all d_u 1.5",
+                 "compute sph all sph/astro/atom rho pressure cs u nneigh h",
+                 "variable rhomin equal 0", "run 0"});
+  auto *array = static_cast<double **>(
+      lammps_extract_compute(lmp.get(), "sph", LMP_STYLE_ATOM, LMP_TYPE_ARRAY));
+  ASSERT_NE(array, nullptr);
+  for (int i = 0; i < lmp->atom->nlocal; i++) {
+    const double rho = array[i][0];
+    EXPECT_NEAR(rho, 1.0, 0.01);    // perfect fcc lattice, hfact 1.2
+    EXPECT_NEAR(array[i][1], (2.0 / 3.0) * rho * 1.5, 1e-12);
+    EXPECT_NEAR(array[i][2], std::sqrt(5.0 / 3.0 * 2.0 / 3.0 * 1.5), 1e-12);
+    EXPECT_DOUBLE_EQ(array[i][3], 1.5);
+    EXPECT_GT(array[i][4], 40);    // about 58 neighbours
+    EXPECT_LT(array[i][4], 75);
+  }
+}
+
+TEST(PairSPHAstro, IsolatedParticleStaysFinite)
+{
+  // a gas slab in a long periodic box and one particle far from it
+  auto lmp = open_lammps();
+  commands(lmp, {"units lj", "atom_style atomic", "atom_modify map array", "boundary p p p",
+                 "lattice fcc 4.0", "region box block 0 20 0 3 0 3", "create_box 1 box",
+                 "region slab block 0 3 0 3 0 3", "create_atoms 1 region slab",
+                 "create_atoms 1 single 12 1 1 units box", "mass 1 0.25",
+                 std::string("pair_style ") + PAIR, "pair_coeff * *",
+                 "fix gas all sph/astro dtmax 0.01", "set group all d_h 0.75",
+                 "set group all d_u 1.0", "neighbor 0.2 bin", "run 50"});
+  const int last = static_cast<int>(lmp->atom->natoms);
+  auto rho = per_atom(lmp, "rho");
+  auto u = per_atom(lmp, "u");
+  auto vx = per_atom(lmp, "v", 0);
+  // alone: density = its own kernel contribution m W(0,h), no force, no heating
+  EXPECT_NEAR(rho[last], 0.25 / (M_PI * 0.75 * 0.75 * 0.75), 1e-12);
+  EXPECT_DOUBLE_EQ(u[last], 1.0);
+  EXPECT_DOUBLE_EQ(vx[last], 0.0);
+}
+
+TEST(FixSPHAstro, RestartContinuesBitForBit)
+{
+  const std::string restart = "test_restart_sph_astro.restart";
+  std::map<int, double> x_ref, v_ref, u_ref;
+  {
+    auto lmp = open_lammps();
+    gas(lmp, "box", 3, PAIR, "sph/astro courant 0.3");
+    commands(lmp, {"run 20", "write_restart " + restart, "run 20"});
+    x_ref = per_atom(lmp, "x", 0);
+    v_ref = per_atom(lmp, "v", 1);
+    u_ref = per_atom(lmp, "u");
+    }
+  auto lmp = open_lammps();
+  commands(lmp, {"read_restart " + restart, "fix gas all sph/astro courant 0.3",
+                 "neigh_modify every 1 delay 0 check yes", "run 20"});
+  auto x = per_atom(lmp, "x", 0);
+  auto v = per_atom(lmp, "v", 1);
+  auto u = per_atom(lmp, "u");
+  ASSERT_EQ(x.size(), x_ref.size());
+  for (const auto &[id, value] : x_ref) {
+    EXPECT_EQ(x[id], value) << "atom " << id;
+    EXPECT_EQ(v[id], v_ref[id]) << "atom " << id;
+    EXPECT_EQ(u[id], u_ref[id]) << "atom " << id;
+  }
+  std::remove(restart.c_str());
+}
+
+TEST(SPHAstroState, DataFileRoundTrip)
+{
+  const std::string data = "test_state_sph_astro.data";
+  std::map<int, double> h_ref, u_ref, v_ref;
+  {
+    auto lmp = open_lammps();
+    gas(lmp, "box", 2, PAIR, "sph/astro");
+    commands(lmp, {"run 5", "write_data " + data});
+    h_ref = per_atom(lmp, "h");
+    u_ref = per_atom(lmp, "u");
+    v_ref = per_atom(lmp, "vest", 0);
+    }
+  auto lmp = open_lammps();
+  commands(lmp, {"units lj", "atom_style atomic", "atom_modify map array", "sph/astro/state",
+                 "read_data " + data + " fix SPH_ASTRO_STATE NULL SPH_ASTRO_STATE",
+                 "pair_style " + std::string(PAIR), "pair_coeff * *", "fix gas all sph/astro",
+                 "run 0"});
+  auto h = per_atom(lmp, "h");
+  auto u = per_atom(lmp, "u");
+  ASSERT_EQ(h.size(), h_ref.size());
+  for (const auto &[id, value] : h_ref) {
+    EXPECT_DOUBLE_EQ(h[id], value);
+    EXPECT_DOUBLE_EQ(u[id], u_ref[id]);
+  }
+  std::remove(data.c_str());
+}
+
+// ---------------------------------------------------------------- bad input
+
+class BadInput : public ::testing::Test {
+ protected:
+  std::unique_ptr<LAMMPS> lmp;
+  void SetUp() override
+  {
+    lmp = open_lammps();
+    commands(lmp, {"units lj", "atom_style atomic", "atom_modify map array", "lattice fcc 4.0",
+                   "region box block 0 2 0 2 0 2", "create_box 1 box", "create_atoms 1 box",
+                   "mass 1 0.25"});
+  }
+  void expect_error(const std::string &line, const std::string &fragment)
+  {
+    const std::string message = error_of(lmp, line);
+    EXPECT_NE(message.find(fragment), std::string::npos)
+        << "command: " << line << "\nmessage: " << message << "\nexpected: " << fragment;
+  }
+  void valid_setup()
+  {
+    commands(lmp, {std::string("pair_style ") + PAIR, "pair_coeff * *", "fix gas all sph/astro",
+                   "set group all d_h 0.75", "set group all d_u 1.0"});
+  }
+};
+
+TEST_F(BadInput, PairStyleArguments)
+{
+  expect_error("pair_style sph/astro kernel lucy", "unknown kernel 'lucy'");
+  expect_error("pair_style sph/astro eos ideal 0.9", "gamma = 0.9 must be > 1");
+  expect_error("pair_style sph/astro eos ideal abc", "Expected floating point");
+  expect_error("pair_style sph/astro eos vdw 1", "unknown eos 'vdw'");
+  expect_error("pair_style sph/astro eos isothermal -1", "sound speed -1 must be > 0");
+  expect_error("pair_style sph/astro eos polytropic 1.0", "Illegal pair_style sph/astro eos polytropic");
+  expect_error("pair_style sph/astro viscosity classic -1 2", "must be >= 0");
+  expect_error("pair_style sph/astro viscosity monaghan", "unknown viscosity 'monaghan'");
+  expect_error("pair_style sph/astro colour blue", "unknown keyword 'colour'");
+  commands(lmp, {"pair_style sph/astro"});
+  expect_error("pair_coeff * * 1.0", "takes only two type ranges");
+}
+
+TEST_F(BadInput, FixArguments)
+{
+  expect_error("fix gas all sph/astro courant 2", "courant = 2 must be in (0, 1]");
+  expect_error("fix gas all sph/astro force 0", "force = 0 must be in (0, 1]");
+  expect_error("fix gas all sph/astro dt sometimes", "dt 'sometimes' is not one of");
+  expect_error("fix gas all sph/astro tend -1", "tend = -1 must be > 0");
+  expect_error("fix gas all sph/astro dtmin 1 dtmax 0.1", "dtmin 1 is larger than dtmax 0.1");
+  expect_error("fix gas all sph/astro speed 1", "unknown keyword 'speed'");
+  expect_error("fix gas all sph/astro courant", "Illegal fix sph/astro courant");
+}
+
+TEST_F(BadInput, MissingPartners)
+{
+  commands(lmp, {"pair_style lj/cut 1.0", "pair_coeff * * 1 1", "fix gas all sph/astro"});
+  expect_error("run 0", "fix sph/astro requires pair_style sph/astro");
+}
+
+TEST_F(BadInput, PairWithoutFix)
+{
+  commands(lmp, {std::string("pair_style ") + PAIR, "pair_coeff * *", "sph/astro/state",
+                 "fix nve all nve"});
+  expect_error("run 0", "pair_style sph/astro requires fix sph/astro");
+}
+
+TEST_F(BadInput, SmoothingLengthMustBePositive)
+{
+  valid_setup();
+  commands(lmp, {"set atom 5 d_h 0.0"});
+  expect_error("run 0", "atom 5 has smoothing length h = 0");
+}
+
+TEST_F(BadInput, NegativeEnergyIsReportedWithAtomID)
+{
+  valid_setup();
+  commands(lmp, {"set atom 7 d_u -0.5"});
+  expect_error("run 0", "atom 7 has specific internal energy u = -0.5");
+}
+
+TEST_F(BadInput, RejectsAtomStyleSPH)
+{
+  lmp.reset();    // one LAMMPS instance at a time: deleting one unloads all plugins
+  lmp = open_lammps();
+  commands(lmp, {"units lj", "atom_style sph", "region box block 0 2 0 2 0 2",
+                 "create_box 1 box"});
+  expect_error("fix gas all sph/astro", "atom_style sph");
+}
+
+TEST_F(BadInput, RejectsUnitsWithConversionFactors)
+{
+  lmp.reset();
+  lmp = open_lammps();
+  commands(lmp, {"units metal", "atom_style atomic", "lattice fcc 4.0",
+                 "region box block 0 2 0 2 0 2", "create_box 1 box", "create_atoms 1 box",
+                 "mass 1 1.0"});
+  valid_setup();
+  expect_error("run 0", "units metal");
+}
+
+TEST_F(BadInput, TimestepCollapseStopsTheRun)
+{
+  valid_setup();
+  commands(lmp, {"unfix gas", "fix gas all sph/astro dtmin 1.0"});
+  expect_error("run 10", "fell below dtmin = 1");
+}
+
+int main(int argc, char **argv)
+{
+  MPI_Init(&argc, &argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  const int rc = RUN_ALL_TESTS();
+  MPI_Finalize();
+  return rc;
+}
