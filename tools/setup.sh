@@ -11,7 +11,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 run_flagship=1
 [ "${1:-}" = "--no-run" ] && run_flagship=0
 
-packages=(cmake g++ make xz-utils libopenmpi-dev openmpi-bin libfftw3-dev libgtest-dev
+packages=(cmake g++ make xz-utils dpkg-dev libopenmpi-dev openmpi-bin libfftw3-dev libgtest-dev
           python3 python3-numpy python3-matplotlib)
 missing=()
 for p in "${packages[@]}"; do

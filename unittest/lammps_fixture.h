@@ -35,7 +35,8 @@ inline std::unique_ptr<LAMMPS_NS::LAMMPS> open_lammps()
   return lmp;
 }
 
-inline void commands(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp, const std::vector<std::string> &lines)
+inline void commands(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp,
+                     const std::vector<std::string> &lines)
 {
   for (const auto &line : lines) lmp->input->one(line);
 }
@@ -69,36 +70,37 @@ inline void gas(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp, const std::string
   const double h = hfact * std::cbrt(0.25);
   commands(lmp, {"units lj", "atom_style atomic", "atom_modify map array sort 0 0.0"});
   if (shape == "box") {
-    commands(lmp, {"boundary p p p", "lattice fcc 4.0",
-                   "region box block 0 " + std::to_string(n) + " 0 " + std::to_string(n) +
-                       " 0 " + std::to_string(n),
-                   "create_box 1 box", "create_atoms 1 box"});
+    commands(lmp,
+             {"boundary p p p", "lattice fcc 4.0",
+              "region box block 0 " + std::to_string(n) + " 0 " + std::to_string(n) + " 0 " +
+                  std::to_string(n),
+              "create_box 1 box", "create_atoms 1 box"});
   } else {
     const double r = 0.5 * n;
-    commands(lmp, {"boundary s s s", "lattice fcc 4.0",
-                   "region box block " + std::to_string(-r - 1) + " " + std::to_string(r + 1) +
-                       " " + std::to_string(-r - 1) + " " + std::to_string(r + 1) + " " +
-                       std::to_string(-r - 1) + " " + std::to_string(r + 1),
-                   "create_box 1 box",
-                   "region ball sphere 0 0 0 " + std::to_string(r) + " units box",
-                   "create_atoms 1 region ball"});
+    commands(lmp,
+             {"boundary s s s", "lattice fcc 4.0",
+              "region box block " + std::to_string(-r - 1) + " " + std::to_string(r + 1) + " " +
+                  std::to_string(-r - 1) + " " + std::to_string(r + 1) + " " +
+                  std::to_string(-r - 1) + " " + std::to_string(r + 1),
+              "create_box 1 box", "region ball sphere 0 0 0 " + std::to_string(r) + " units box",
+              "create_atoms 1 region ball"});
   }
   if (jitter > 0.0)
-    commands(lmp, {"displace_atoms all random " + num(jitter) + " " + num(jitter) + " " +
-                   num(jitter) + " 4711 units box"});
-  commands(lmp, {"mass 1 0.25",
-                 "velocity all create 0.001 8675309 dist gaussian", "pair_style " + pair,
-                 "pair_coeff * *", "fix gas all " + fix,
-                 "set group all d_h " + num(h),
-                 "variable urand atom " + num(u) + "*(1.0+0.2*random(-1,1,991))",
-                 "set group all d_u v_urand", "neighbor " + num(0.3 * h) + " bin",
-                 "neigh_modify every 1 delay 0 check yes",
-                 "compute sum all sph/astro/global", "thermo_style custom step c_sum[11]",
-                 "timestep 0.002"});
+    commands(lmp,
+             {"displace_atoms all random " + num(jitter) + " " + num(jitter) + " " + num(jitter) +
+              " 4711 units box"});
+  commands(lmp,
+           {"mass 1 0.25", "velocity all create 0.001 8675309 dist gaussian", "pair_style " + pair,
+            "pair_coeff * *", "fix gas all " + fix, "set group all d_h " + num(h),
+            "variable urand atom " + num(u) + "*(1.0+0.2*random(-1,1,991))",
+            "set group all d_u v_urand", "neighbor " + num(0.3 * h) + " bin",
+            "neigh_modify every 1 delay 0 check yes", "compute sum all sph/astro/global",
+            "thermo_style custom step c_sum[11]", "timestep 0.002"});
 }
 
 // global vector of a compute, as last evaluated (thermo evaluates it on the last step)
-inline std::vector<double> global_vector(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp, const char *id, int n)
+inline std::vector<double> global_vector(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp,
+                                         const char *id, int n)
 {
   auto *vec = static_cast<double *>(
       lammps_extract_compute(lmp.get(), id, LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR));
@@ -107,7 +109,8 @@ inline std::vector<double> global_vector(const std::unique_ptr<LAMMPS_NS::LAMMPS
 }
 
 // per-atom double custom property or x/v/f component by atom ID (single rank)
-inline std::map<int, double> per_atom(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp, const std::string &what, int col = 0)
+inline std::map<int, double> per_atom(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp,
+                                      const std::string &what, int col = 0)
 {
   std::map<int, double> out;
   auto *atom = lmp->atom;

@@ -69,7 +69,8 @@ TEST_P(KernelTest, GradientMatchesNumericalDerivative)
   double worst = 0.0, scale = 0.0;
   for (int i = 1; i < 400; i++) {
     const double r = R * i / 400.0;
-    const double numeric = (kernel_W(k, dim, r + eps, h) - kernel_W(k, dim, r - eps, h)) / (2 * eps);
+    const double numeric =
+        (kernel_W(k, dim, r + eps, h) - kernel_W(k, dim, r - eps, h)) / (2 * eps);
     worst = std::max(worst, std::fabs(numeric - kernel_dWdr(k, dim, r, h)));
     scale = std::max(scale, std::fabs(kernel_dWdr(k, dim, r, h)));
   }

@@ -36,9 +36,10 @@ TEST(PairSPHAstro, ForcesSumToZeroAndMomentumIsConserved)
   // momentum and angular momentum stay at round-off (they start at zero)
   double pscale = 0;
   for (int i = 0; i < lmp->atom->nlocal; i++)
-    pscale += 0.25 * std::sqrt(lmp->atom->v[i][0] * lmp->atom->v[i][0] +
-                               lmp->atom->v[i][1] * lmp->atom->v[i][1] +
-                               lmp->atom->v[i][2] * lmp->atom->v[i][2]);
+    pscale += 0.25 *
+        std::sqrt(lmp->atom->v[i][0] * lmp->atom->v[i][0] +
+                  lmp->atom->v[i][1] * lmp->atom->v[i][1] +
+                  lmp->atom->v[i][2] * lmp->atom->v[i][2]);
   ASSERT_GT(pscale, 0.0);
   for (int k : {PX, PY, PZ}) EXPECT_LT(std::fabs(end[k] - start[k]), 1e-12 * pscale) << k;
   for (int k : {LX, LY, LZ}) EXPECT_LT(std::fabs(end[k] - start[k]), 1e-11 * pscale) << k;
@@ -54,8 +55,9 @@ static double energy_error(double dt)
   auto lmp = open_lammps();
   gas(lmp, "ball", 6, PAIR, "sph/astro dt fixed");
   const int nsteps = static_cast<int>(std::lround(0.4 / dt));
-  commands(lmp, {"timestep " + std::to_string(dt), "thermo " + std::to_string(nsteps),
-                 "run " + std::to_string(nsteps)});
+  commands(lmp,
+           {"timestep " + std::to_string(dt), "thermo " + std::to_string(nsteps),
+            "run " + std::to_string(nsteps)});
   const auto end = global_vector(lmp, "sum", 12);
   return std::fabs(end[DEREL]);
 }
@@ -88,8 +90,8 @@ TEST(FixSPHAstro, StopsAtTend)
   auto lmp = open_lammps();
   gas(lmp, "box", 3, PAIR, "sph/astro tend 0.0375");
   commands(lmp, {"run 100000"});
-  EXPECT_NEAR(lmp->update->atime + (lmp->update->ntimestep - lmp->update->atimestep) *
-                                       lmp->update->dt,
+  EXPECT_NEAR(lmp->update->atime +
+                  (lmp->update->ntimestep - lmp->update->atimestep) * lmp->update->dt,
               0.0375, 1e-12);
   EXPECT_LT(lmp->update->ntimestep, 1000);
 }
@@ -98,9 +100,9 @@ TEST(ComputeSPHAstroAtom, UniformDensityAndPressure)
 {
   auto lmp = open_lammps();
   gas(lmp, "box", 4, PAIR, "sph/astro", 1.0, 0.0);
-  commands(lmp, {"set group all d_u 1.5",
-                 "compute sph all sph/astro/atom rho pressure cs u nneigh h",
-                 "variable rhomin equal 0", "run 0"});
+  commands(lmp,
+           {"set group all d_u 1.5", "compute sph all sph/astro/atom rho pressure cs u nneigh h",
+            "variable rhomin equal 0", "run 0"});
   auto *array = static_cast<double **>(
       lammps_extract_compute(lmp.get(), "sph", LMP_STYLE_ATOM, LMP_TYPE_ARRAY));
   ASSERT_NE(array, nullptr);
@@ -119,13 +121,13 @@ TEST(PairSPHAstro, IsolatedParticleStaysFinite)
 {
   // a gas slab in a long periodic box and one particle far from it
   auto lmp = open_lammps();
-  commands(lmp, {"units lj", "atom_style atomic", "atom_modify map array", "boundary p p p",
-                 "lattice fcc 4.0", "region box block 0 20 0 3 0 3", "create_box 1 box",
-                 "region slab block 0 3 0 3 0 3", "create_atoms 1 region slab",
-                 "create_atoms 1 single 12 1 1 units box", "mass 1 0.25",
-                 std::string("pair_style ") + PAIR, "pair_coeff * *",
-                 "fix gas all sph/astro dtmax 0.01", "set group all d_h 0.75",
-                 "set group all d_u 1.0", "neighbor 0.2 bin", "run 50"});
+  commands(lmp,
+           {"units lj", "atom_style atomic", "atom_modify map array", "boundary p p p",
+            "lattice fcc 4.0", "region box block 0 20 0 3 0 3", "create_box 1 box",
+            "region slab block 0 3 0 3 0 3", "create_atoms 1 region slab",
+            "create_atoms 1 single 12 1 1 units box", "mass 1 0.25",
+            std::string("pair_style ") + PAIR, "pair_coeff * *", "fix gas all sph/astro dtmax 0.01",
+            "set group all d_h 0.75", "set group all d_u 1.0", "neighbor 0.2 bin", "run 50"});
   const int last = static_cast<int>(lmp->atom->natoms);
   auto rho = per_atom(lmp, "rho");
   auto u = per_atom(lmp, "u");
@@ -147,10 +149,11 @@ TEST(FixSPHAstro, RestartContinuesBitForBit)
     x_ref = per_atom(lmp, "x", 0);
     v_ref = per_atom(lmp, "v", 1);
     u_ref = per_atom(lmp, "u");
-    }
+  }
   auto lmp = open_lammps();
-  commands(lmp, {"read_restart " + restart, "fix gas all sph/astro courant 0.3",
-                 "neigh_modify every 1 delay 0 check yes", "run 20"});
+  commands(lmp,
+           {"read_restart " + restart, "fix gas all sph/astro courant 0.3",
+            "neigh_modify every 1 delay 0 check yes", "run 20"});
   auto x = per_atom(lmp, "x", 0);
   auto v = per_atom(lmp, "v", 1);
   auto u = per_atom(lmp, "u");
@@ -174,12 +177,12 @@ TEST(SPHAstroState, DataFileRoundTrip)
     h_ref = per_atom(lmp, "h");
     u_ref = per_atom(lmp, "u");
     v_ref = per_atom(lmp, "vest", 0);
-    }
+  }
   auto lmp = open_lammps();
-  commands(lmp, {"units lj", "atom_style atomic", "atom_modify map array", "sph/astro/state",
-                 "read_data " + data + " fix SPH_ASTRO_STATE NULL SPH_ASTRO_STATE",
-                 "pair_style " + std::string(PAIR), "pair_coeff * *", "fix gas all sph/astro",
-                 "run 0"});
+  commands(lmp,
+           {"units lj", "atom_style atomic", "atom_modify map array", "sph/astro/state",
+            "read_data " + data + " fix SPH_ASTRO_STATE NULL SPH_ASTRO_STATE",
+            "pair_style " + std::string(PAIR), "pair_coeff * *", "fix gas all sph/astro", "run 0"});
   auto h = per_atom(lmp, "h");
   auto u = per_atom(lmp, "u");
   ASSERT_EQ(h.size(), h_ref.size());
@@ -198,9 +201,10 @@ class BadInput : public ::testing::Test {
   void SetUp() override
   {
     lmp = open_lammps();
-    commands(lmp, {"units lj", "atom_style atomic", "atom_modify map array", "lattice fcc 4.0",
-                   "region box block 0 2 0 2 0 2", "create_box 1 box", "create_atoms 1 box",
-                   "mass 1 0.25"});
+    commands(lmp,
+             {"units lj", "atom_style atomic", "atom_modify map array", "lattice fcc 4.0",
+              "region box block 0 2 0 2 0 2", "create_box 1 box", "create_atoms 1 box",
+              "mass 1 0.25"});
   }
   void expect_error(const std::string &line, const std::string &fragment)
   {
@@ -210,8 +214,9 @@ class BadInput : public ::testing::Test {
   }
   void valid_setup()
   {
-    commands(lmp, {std::string("pair_style ") + PAIR, "pair_coeff * *", "fix gas all sph/astro",
-                   "set group all d_h 0.75", "set group all d_u 1.0"});
+    commands(lmp,
+             {std::string("pair_style ") + PAIR, "pair_coeff * *", "fix gas all sph/astro",
+              "set group all d_h 0.75", "set group all d_u 1.0"});
   }
 };
 
@@ -222,7 +227,8 @@ TEST_F(BadInput, PairStyleArguments)
   expect_error("pair_style sph/astro eos ideal abc", "Expected floating point");
   expect_error("pair_style sph/astro eos vdw 1", "unknown eos 'vdw'");
   expect_error("pair_style sph/astro eos isothermal -1", "sound speed -1 must be > 0");
-  expect_error("pair_style sph/astro eos polytropic 1.0", "Illegal pair_style sph/astro eos polytropic");
+  expect_error("pair_style sph/astro eos polytropic 1.0",
+               "Illegal pair_style sph/astro eos polytropic");
   expect_error("pair_style sph/astro viscosity classic -1 2", "must be >= 0");
   expect_error("pair_style sph/astro viscosity monaghan", "unknown viscosity 'monaghan'");
   expect_error("pair_style sph/astro colour blue", "unknown keyword 'colour'");
@@ -249,8 +255,9 @@ TEST_F(BadInput, MissingPartners)
 
 TEST_F(BadInput, PairWithoutFix)
 {
-  commands(lmp, {std::string("pair_style ") + PAIR, "pair_coeff * *", "sph/astro/state",
-                 "fix nve all nve"});
+  commands(
+      lmp,
+      {std::string("pair_style ") + PAIR, "pair_coeff * *", "sph/astro/state", "fix nve all nve"});
   expect_error("run 0", "pair_style sph/astro requires fix sph/astro");
 }
 
@@ -272,8 +279,7 @@ TEST_F(BadInput, RejectsAtomStyleSPH)
 {
   lmp.reset();    // one LAMMPS instance at a time: deleting one unloads all plugins
   lmp = open_lammps();
-  commands(lmp, {"units lj", "atom_style sph", "region box block 0 2 0 2 0 2",
-                 "create_box 1 box"});
+  commands(lmp, {"units lj", "atom_style sph", "region box block 0 2 0 2 0 2", "create_box 1 box"});
   expect_error("fix gas all sph/astro", "atom_style sph");
 }
 
@@ -281,9 +287,9 @@ TEST_F(BadInput, RejectsUnitsWithConversionFactors)
 {
   lmp.reset();
   lmp = open_lammps();
-  commands(lmp, {"units metal", "atom_style atomic", "lattice fcc 4.0",
-                 "region box block 0 2 0 2 0 2", "create_box 1 box", "create_atoms 1 box",
-                 "mass 1 1.0"});
+  commands(lmp,
+           {"units metal", "atom_style atomic", "lattice fcc 4.0", "region box block 0 2 0 2 0 2",
+            "create_box 1 box", "create_atoms 1 box", "mass 1 1.0"});
   valid_setup();
   expect_error("run 0", "units metal");
 }

@@ -71,15 +71,14 @@ void ComputeSPHAstroAtom::compute_peratom()
     }
   }
   int ncol;
-  const double *columns[8] = {
-      atom->dvector[state_.rho],
-      atom->dvector[state_.h],
-      static_cast<double *>(pair_->extract_peratom("pressure", ncol)),
-      static_cast<double *>(pair_->extract_peratom("soundspeed", ncol)),
-      atom->dvector[state_.u],
-      static_cast<double *>(pair_->extract_peratom("nneigh", ncol)),
-      static_cast<double *>(pair_->extract_peratom("divv", ncol)),
-      atom->dvector[state_.dudt]};
+  const double *columns[8] = {atom->dvector[state_.rho],
+                              atom->dvector[state_.h],
+                              static_cast<double *>(pair_->extract_peratom("pressure", ncol)),
+                              static_cast<double *>(pair_->extract_peratom("soundspeed", ncol)),
+                              atom->dvector[state_.u],
+                              static_cast<double *>(pair_->extract_peratom("nneigh", ncol)),
+                              static_cast<double *>(pair_->extract_peratom("divv", ncol)),
+                              atom->dvector[state_.dudt]};
   const int *mask = atom->mask;
   const int nf = static_cast<int>(fields_.size());
   for (int k = 0; k < nf; k++) {

@@ -28,7 +28,8 @@ using namespace LAMMPS_NS;
 ComputeSPHAstroGlobal::ComputeSPHAstroGlobal(LAMMPS *lmp, int narg, char **arg) :
     Compute(lmp, narg, arg)
 {
-  if (narg != 3) error->all(FLERR, "compute sph/astro/global takes no arguments (got {})", narg - 3);
+  if (narg != 3)
+    error->all(FLERR, "compute sph/astro/global takes no arguments (got {})", narg - 3);
   vector_flag = 1;
   size_vector = NVALUES;
   extvector = 0;

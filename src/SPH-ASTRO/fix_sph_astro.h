@@ -37,11 +37,11 @@ class FixSPHAstro : public Fix {
   double reference_energy(double current);
 
  protected:
-  double courant_ = 0.3;        // C in dt = C h / (c + h|div v| + 1.2 (alpha c + beta h|div v|))
-  double force_factor_ = 0.3;   // C_f in dt = C_f sqrt(h / |a|)
-  double dtmax_ = 0.0;          // 0: no upper bound
-  double dtmin_ = 0.0;          // 0: no lower bound (a step below it is an error)
-  double tend_ = -1.0;          // < 0: no end time
+  double courant_ = 0.3;         // C in dt = C h / (c + h|div v| + 1.2 (alpha c + beta h|div v|))
+  double force_factor_ = 0.3;    // C_f in dt = C_f sqrt(h / |a|)
+  double dtmax_ = 0.0;           // 0: no upper bound
+  double dtmin_ = 0.0;           // 0: no lower bound (a step below it is an error)
+  double tend_ = -1.0;           // < 0: no end time
   bool adaptive_ = true;
   bool stopped_at_tend_ = false;
 

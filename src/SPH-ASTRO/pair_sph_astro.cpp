@@ -112,7 +112,8 @@ void PairSPHAstro::settings(int narg, char **arg)
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_style sph/astro eos", error);
       const std::string model = arg[iarg + 1];
       if (model == "ideal") {
-        if (iarg + 3 > narg) utils::missing_cmd_args(FLERR, "pair_style sph/astro eos ideal", error);
+        if (iarg + 3 > narg)
+          utils::missing_cmd_args(FLERR, "pair_style sph/astro eos ideal", error);
         eos_.type = EOSType::IDEAL;
         eos_.gamma = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
         if (!(eos_.gamma > 1.0))
@@ -206,7 +207,8 @@ void PairSPHAstro::coeff(int narg, char **arg)
       setflag[i][j] = 1;
       count++;
     }
-  if (count == 0) error->all(FLERR, "pair_coeff sph/astro: type ranges {} {} select no pair", arg[0], arg[1]);
+  if (count == 0)
+    error->all(FLERR, "pair_coeff sph/astro: type ranges {} {} select no pair", arg[0], arg[1]);
 }
 
 void PairSPHAstro::init_style()
@@ -463,18 +465,25 @@ void PairSPHAstro::compute(int eflag, int vflag)
   ev_init(eflag, vflag);
   grow_work_arrays();
   switch (kernel_) {
-    case KernelType::CUBIC: dispatch_dimension<KernelCubic>(); break;
-    case KernelType::QUINTIC: dispatch_dimension<KernelQuintic>(); break;
-    case KernelType::WENDLAND_C2: dispatch_dimension<KernelWendlandC2>(); break;
-    case KernelType::WENDLAND_C4: dispatch_dimension<KernelWendlandC4>(); break;
+    case KernelType::CUBIC:
+      dispatch_dimension<KernelCubic>();
+      break;
+    case KernelType::QUINTIC:
+      dispatch_dimension<KernelQuintic>();
+      break;
+    case KernelType::WENDLAND_C2:
+      dispatch_dimension<KernelWendlandC2>();
+      break;
+    case KernelType::WENDLAND_C4:
+      dispatch_dimension<KernelWendlandC4>();
+      break;
   }
   if (vflag_fdotr) virial_fdotr_compute();
 }
 
 /* ---------------------------------------------------------------------- */
 
-int PairSPHAstro::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/,
-                                    int * /*pbc*/)
+int PairSPHAstro::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, int * /*pbc*/)
 {
   const double *rho = atom->dvector[state_.rho];
   double **vest = atom->darray[state_.vest];

@@ -52,9 +52,12 @@ struct EOS {
   inline double energy_of(double rho, double u) const
   {
     switch (type) {
-      case EOSType::IDEAL: return u;
-      case EOSType::ISOTHERMAL: return 0.0;
-      case EOSType::POLYTROPIC: return K * std::pow(rho, gamma - 1.0) / (gamma - 1.0);
+      case EOSType::IDEAL:
+        return u;
+      case EOSType::ISOTHERMAL:
+        return 0.0;
+      case EOSType::POLYTROPIC:
+        return K * std::pow(rho, gamma - 1.0) / (gamma - 1.0);
     }
     return u;
   }

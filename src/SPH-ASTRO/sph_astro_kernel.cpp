@@ -32,10 +32,14 @@ namespace {
 double kernel_W(KernelType type, int dim, double r, double h)
 {
   switch (type) {
-    case KernelType::CUBIC: return W_dim<KernelCubic>(dim, r, h);
-    case KernelType::QUINTIC: return W_dim<KernelQuintic>(dim, r, h);
-    case KernelType::WENDLAND_C2: return W_dim<KernelWendlandC2>(dim, r, h);
-    case KernelType::WENDLAND_C4: return W_dim<KernelWendlandC4>(dim, r, h);
+    case KernelType::CUBIC:
+      return W_dim<KernelCubic>(dim, r, h);
+    case KernelType::QUINTIC:
+      return W_dim<KernelQuintic>(dim, r, h);
+    case KernelType::WENDLAND_C2:
+      return W_dim<KernelWendlandC2>(dim, r, h);
+    case KernelType::WENDLAND_C4:
+      return W_dim<KernelWendlandC4>(dim, r, h);
   }
   return 0.0;
 }
@@ -43,10 +47,14 @@ double kernel_W(KernelType type, int dim, double r, double h)
 double kernel_dWdr(KernelType type, int dim, double r, double h)
 {
   switch (type) {
-    case KernelType::CUBIC: return dW_dim<KernelCubic>(dim, r, h);
-    case KernelType::QUINTIC: return dW_dim<KernelQuintic>(dim, r, h);
-    case KernelType::WENDLAND_C2: return dW_dim<KernelWendlandC2>(dim, r, h);
-    case KernelType::WENDLAND_C4: return dW_dim<KernelWendlandC4>(dim, r, h);
+    case KernelType::CUBIC:
+      return dW_dim<KernelCubic>(dim, r, h);
+    case KernelType::QUINTIC:
+      return dW_dim<KernelQuintic>(dim, r, h);
+    case KernelType::WENDLAND_C2:
+      return dW_dim<KernelWendlandC2>(dim, r, h);
+    case KernelType::WENDLAND_C4:
+      return dW_dim<KernelWendlandC4>(dim, r, h);
   }
   return 0.0;
 }
@@ -54,10 +62,14 @@ double kernel_dWdr(KernelType type, int dim, double r, double h)
 double kernel_radius(KernelType type)
 {
   switch (type) {
-    case KernelType::CUBIC: return KernelCubic::radius;
-    case KernelType::QUINTIC: return KernelQuintic::radius;
-    case KernelType::WENDLAND_C2: return KernelWendlandC2::radius;
-    case KernelType::WENDLAND_C4: return KernelWendlandC4::radius;
+    case KernelType::CUBIC:
+      return KernelCubic::radius;
+    case KernelType::QUINTIC:
+      return KernelQuintic::radius;
+    case KernelType::WENDLAND_C2:
+      return KernelWendlandC2::radius;
+    case KernelType::WENDLAND_C4:
+      return KernelWendlandC4::radius;
   }
   return 0.0;
 }
@@ -65,10 +77,14 @@ double kernel_radius(KernelType type)
 const char *kernel_name(KernelType type)
 {
   switch (type) {
-    case KernelType::CUBIC: return KernelCubic::name;
-    case KernelType::QUINTIC: return KernelQuintic::name;
-    case KernelType::WENDLAND_C2: return KernelWendlandC2::name;
-    case KernelType::WENDLAND_C4: return KernelWendlandC4::name;
+    case KernelType::CUBIC:
+      return KernelCubic::name;
+    case KernelType::QUINTIC:
+      return KernelQuintic::name;
+    case KernelType::WENDLAND_C2:
+      return KernelWendlandC2::name;
+    case KernelType::WENDLAND_C4:
+      return KernelWendlandC4::name;
   }
   return "";
 }
