@@ -117,6 +117,92 @@ TEST(ComputeSPHAstroAtom, UniformDensityAndPressure)
   }
 }
 
+// density of a perfect lattice for every kernel, in 3D (fcc) and 2D (hexagonal lattice)
+class KernelInLAMMPS : public ::testing::TestWithParam<std::tuple<std::string, int>> {};
+
+TEST_P(KernelInLAMMPS, LatticeDensity)
+{
+  const auto [kernel, dim] = GetParam();
+  // hfact giving about 58 (3D) or 20 (2D) neighbours for support 2h; 3h for m6
+  const double radius = kernel == "m6" ? 3.0 : 2.0;
+  const double hfact = (dim == 3 ? 2.4 : 2.6) / radius;
+  auto lmp = open_lammps();
+  if (dim == 3) {
+    commands(lmp, {"units lj", "atom_style atomic", "atom_modify map array", "lattice fcc 4.0",
+                   "region box block 0 4 0 4 0 4", "create_box 1 box", "create_atoms 1 box",
+                   "mass 1 0.25"});    // rho 1: m = 1/4, spacing^3 = 1/4
+  } else {
+    // hexagonal lattice with nearest-neighbour distance 1: area per particle sqrt(3)/2
+    commands(lmp, {"units lj", "dimension 2", "atom_style atomic", "atom_modify map array",
+                   "lattice hex 1.1547005383792515", "region box block 0 6 0 4 -0.5 0.5",
+                   "create_box 1 box", "create_atoms 1 box", "mass 1 0.8660254037844386"});
+  }
+  const double spacing = dim == 3 ? std::cbrt(0.25) : std::sqrt(0.8660254037844386);
+  commands(lmp, {"pair_style sph/astro kernel " + kernel + " eos ideal 1.4", "pair_coeff * *",
+                 "fix gas all sph/astro", "set group all d_h " + num(hfact * spacing),
+                 "set group all d_u 2.5", "compute sph all sph/astro/atom rho pressure",
+                 "run 0"});
+  auto *array = static_cast<double **>(
+      lammps_extract_compute(lmp.get(), "sph", LMP_STYLE_ATOM, LMP_TYPE_ARRAY));
+  ASSERT_NE(array, nullptr);
+  double worst = 0.0;
+  for (int i = 0; i < lmp->atom->nlocal; i++) {
+    worst = std::max(worst, std::fabs(array[i][0] - 1.0));
+    EXPECT_NEAR(array[i][1], 0.4 * array[i][0] * 2.5, 1e-12);
+  }
+  printf("kernel %s, %dD: max |rho - 1| on the lattice = %.3e\n", kernel.c_str(), dim, worst);
+  // kernel summation on a lattice: a few per cent at these neighbour numbers
+  EXPECT_LT(worst, 0.02) << kernel << " " << dim << "D";
+}
+
+INSTANTIATE_TEST_SUITE_P(AllKernels, KernelInLAMMPS,
+                         ::testing::Combine(::testing::Values("m4", "m6", "wendland/c2",
+                                                              "wendland/c4"),
+                                            ::testing::Values(2, 3)));
+
+TEST(PairSPHAstro, BarotropicEquationsOfState)
+{
+  for (const std::string eos : {"isothermal 0.7", "polytropic 0.3 2.0"}) {
+    auto lmp = open_lammps();
+    gas(lmp, "box", 3, "sph/astro eos " + eos + " viscosity classic 1 2", "sph/astro", 1.0, 0.0);
+    commands(lmp, {"compute sph all sph/astro/atom rho pressure cs u dudt", "run 20"});
+    auto *array = static_cast<double **>(
+        lammps_extract_compute(lmp.get(), "sph", LMP_STYLE_ATOM, LMP_TYPE_ARRAY));
+    ASSERT_NE(array, nullptr);
+    for (int i = 0; i < lmp->atom->nlocal; i++) {
+      const double rho = array[i][0];
+      if (eos[0] == 'i') {
+        EXPECT_NEAR(array[i][1], 0.49 * rho, 1e-12);
+        EXPECT_NEAR(array[i][2], 0.7, 1e-12);
+      } else {
+        EXPECT_NEAR(array[i][1], 0.3 * rho * rho, 1e-12);
+        EXPECT_NEAR(array[i][2], std::sqrt(2.0 * 0.3 * rho), 1e-12);
+      }
+      // barotropic gas: u is not evolved
+      EXPECT_EQ(array[i][4], 0.0);
+    }
+    auto u = per_atom(lmp, "u");
+    for (const auto &[id, value] : u) EXPECT_GT(value, 0.0);
+  }
+}
+
+TEST(PairSPHAstro, NonPositiveMassIsReportedWithAtomID)
+{
+  auto lmp = open_lammps();
+  commands(lmp, {"units lj", "atom_style atomic", "atom_modify map array", "lattice fcc 4.0",
+                 "region box block 0 2 0 2 0 2", "create_box 1 box", "create_atoms 1 box",
+                 "fix mass all property/atom rmass", "set group all mass 0.25",
+                 std::string("pair_style ") + PAIR, "pair_coeff * *", "fix gas all sph/astro",
+                 "set group all d_h 0.75", "set group all d_u 1.0"});
+  const std::string message = error_of(lmp, "set atom 3 mass -1.0");
+  if (message.empty()) {
+    EXPECT_NE(error_of(lmp, "run 0").find("atom 3 has mass -1"), std::string::npos);
+  } else {
+    // LAMMPS' set command already refuses it
+    EXPECT_NE(message.find("mass"), std::string::npos) << message;
+  }
+}
+
 TEST(PairSPHAstro, IsolatedParticleStaysFinite)
 {
   // a gas slab in a long periodic box and one particle far from it
