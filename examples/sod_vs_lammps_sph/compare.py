@@ -1,0 +1,273 @@
+#!/usr/bin/python3
+"""Run the 3d shock tube of LAMMPS' SPH package and the same particles with SPH-ASTRO; compare.
+
+Usage (from anywhere; needs numpy and matplotlib, i.e. Debian's /usr/bin/python3)::
+
+    /usr/bin/python3 examples/sod_vs_lammps_sph/compare.py [--np 1] [--outdir DIR] [--check]
+
+Runs, one after the other, ``in.lammps_sph`` (LAMMPS' SPH package, the physics of
+``examples/PACKAGES/sph/shock_tube/shock3d.lmp``) and ``in.sph_astro`` (SPH-ASTRO on the same
+particles) as ``lmp -in ... -log ... -screen none`` inside DIR (default
+build/output/sod_vs_lammps_sph), timing the wall time of each lmp call. Then compares the
+final dumps (t = 20) with the exact Riemann solution (gamma 1.4, left (rho, v, P) = (1, 0, 1),
+right (0.25, 0, 0.25), discontinuity at x0 = 0.5, halfway between the particle layers x = 0
+and x = 1) over -50 <= x <= 50, the range of LAMMPS' exact_solution.dat: per-particle L1
+errors of rho, vx and P, a table, the SPH-ASTRO / SPH-package ratios of L1(rho) and wall
+time, and a PNG of the profiles (DIR/sod_vs_lammps_sph.png).
+
+The environment (lmp on PATH, the plugin path) comes from $SPH_ASTRO_BUILD/env.sh, or
+build/env.sh of this repository, when that file exists; otherwise from the caller.
+
+Exit status: 0; 2 if a LAMMPS run failed (non-zero status or no dump); with --check, 1 unless
+SPH-ASTRO's L1(rho) <= 0.5 x the SPH package's AND its wall time <= 0.5 x the SPH package's.
+"""
+
+import argparse
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.normpath(os.path.join(HERE, os.pardir, os.pardir))
+sys.path.insert(0, os.path.join(ROOT, "tools"))
+
+import numpy as np  # noqa: E402
+
+from sphastro import riemann  # noqa: E402
+from sphastro.dump import read_last_frame  # noqa: E402
+
+GAMMA = 1.4
+LEFT = (1.0, 0.0, 1.0)
+RIGHT = (0.25, 0.0, 0.25)
+X0 = 0.5          # interface between the last left layer (x = 0) and the first right one (x = 1)
+TEND = 20.0
+WINDOW = (-50.0, 50.0)
+BAR = 0.5         # acceptance: SPH-ASTRO L1(rho) and wall time <= BAR x the SPH package's
+
+RUNS = (
+    # key, label, input, dump, log
+    ("lammps_sph", "LAMMPS SPH", "in.lammps_sph", "dump.lammps_sph", "log.lammps_sph"),
+    ("sph_astro", "SPH-ASTRO", "in.sph_astro", "dump.sph_astro", "log.sph_astro"),
+)
+
+LOOP_RE = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms",
+                     re.M)
+
+
+def load_environment():
+    """The environment of build/env.sh (lmp, plugin path), or the caller's if there is none."""
+    build = os.environ.get("SPH_ASTRO_BUILD", os.path.join(ROOT, "build"))
+    env_sh = os.path.join(build, "env.sh")
+    if not os.path.isfile(env_sh):
+        return dict(os.environ), None
+    out = subprocess.run(["bash", "-c", 'source "$1" && env -0', "bash", env_sh],
+                         check=True, stdout=subprocess.PIPE).stdout
+    env = dict(item.split("=", 1) for item in out.decode().split("\0") if "=" in item)
+    return env, env_sh
+
+
+def run_lammps(key, label, infile, dump, log, np_ranks, outdir, env):
+    """Run one input in outdir; return a dict with status, wall time and the log's loop data."""
+    for stale in (dump, log):
+        if os.path.exists(os.path.join(outdir, stale)):
+            os.remove(os.path.join(outdir, stale))
+    cmd = ["lmp", "-in", os.path.join(HERE, infile), "-log", log, "-screen", "none",
+           "-var", "out", dump]
+    if np_ranks > 1:
+        cmd = ["mpirun", "-np", str(np_ranks)] + cmd
+    load = os.getloadavg()[0]
+    print(f"running {label}: {' '.join(cmd)}  (load average {load:.2f})", flush=True)
+    start = time.perf_counter()
+    proc = subprocess.run(cmd, cwd=outdir, env=env, stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT)
+    wall = time.perf_counter() - start
+    result = {"key": key, "label": label, "wall": wall, "rc": proc.returncode,
+              "dump": os.path.join(outdir, dump), "log": os.path.join(outdir, log),
+              "output": proc.stdout.decode(errors="replace"), "load": load}
+    text = ""
+    if os.path.exists(result["log"]):
+        with open(result["log"], errors="replace") as f:
+            text = f.read()
+    loops = LOOP_RE.findall(text)
+    if loops:
+        loop, procs, steps, atoms = loops[-1]
+        result.update(loop=float(loop), procs=int(procs), steps=int(steps), atoms=int(atoms))
+    result["ok"] = proc.returncode == 0 and os.path.exists(result["dump"]) and bool(loops)
+    if not result["ok"]:
+        print(f"  {label} FAILED (exit status {proc.returncode}); last lines of output/log:")
+        tail = (text or result["output"]).rstrip().splitlines()[-15:]
+        for line in tail:
+            print("    " + line)
+        for line in result["output"].rstrip().splitlines()[-5:]:
+            if line not in tail:
+                print("    " + line)
+    else:
+        print(f"  {label}: {wall:.2f} s wall, {result['steps']} steps, loop time "
+              f"{result['loop']:.2f} s", flush=True)
+    return result
+
+
+def particle_data(key, path):
+    """x, rho, vx, P from a final dump (P of the SPH package: 0.4 rho e / m)."""
+    frame = read_last_frame(path)
+    c = frame.columns
+    x, rho, vx = c["x"], c["rho"], c["vx"]
+    if key == "lammps_sph":
+        p = (GAMMA - 1.0) * rho * c["e"] / c["mass"]
+        if "pressure" in c and not np.allclose(p, c["pressure"], rtol=1e-4, atol=1e-6):
+            print("  warning: the dumped pressure differs from 0.4 rho e / m")
+    else:
+        p = c["pressure"]
+    return {"x": x, "rho": rho, "vx": vx, "p": p, "time": frame.time,
+            "timestep": frame.timestep}
+
+
+def l1_errors(data, x0=X0):
+    x = data["x"]
+    sel = (x >= WINDOW[0]) & (x <= WINDOW[1])
+    exact = riemann.sample(x[sel], TEND, LEFT, RIGHT, GAMMA, x0)
+    err = {k: float(np.mean(np.abs(data[k][sel] - exact[q])))
+           for k, q in (("rho", "rho"), ("vx", "vx"), ("p", "p"))}
+    err["n"] = int(np.count_nonzero(sel))
+    err["nan"] = int(sum(np.count_nonzero(~np.isfinite(data[k])) for k in ("x", "rho", "vx", "p")))
+    return err
+
+
+def check_reference_file(env):
+    """Compare LAMMPS' exact_solution.dat (columns x rho v P) with sphastro.riemann."""
+    src = env.get("LAMMPS_SOURCE_DIR", "")
+    path = os.path.join(src, "examples", "PACKAGES", "sph", "shock_tube", "exact_solution.dat")
+    if not src or not os.path.isfile(path):
+        print("exact_solution.dat of LAMMPS not found (LAMMPS_SOURCE_DIR unset?): not checked")
+        return
+    ref = np.loadtxt(path)
+    print(f"LAMMPS exact_solution.dat ({len(ref)} points, x {ref[0, 0]:g} .. {ref[-1, 0]:g}) "
+          "against sphastro.riemann (gamma 1.4, t 20):")
+    for x0 in (0.0, X0):
+        ex = riemann.sample(ref[:, 0], TEND, LEFT, RIGHT, GAMMA, x0)
+        dev = max(float(np.max(np.abs(ex[q] - ref[:, k])))
+                  for k, q in ((1, "rho"), (2, "vx"), (3, "p")))
+        print(f"  x0 = {x0:g}: max |difference| of rho, v, P = {dev:.2e}")
+    print("  (the file puts the discontinuity at x0 = 0; the particles put it at x0 = 0.5,"
+          " used here)")
+
+
+def plot(datas, path):
+    from matplotlib.figure import Figure
+
+    xs = np.linspace(WINDOW[0], WINDOW[1], 4001)
+    exact = riemann.sample(xs, TEND, LEFT, RIGHT, GAMMA, X0)
+    fig = Figure(figsize=(9, 10))
+    axes = fig.subplots(3, 1, sharex=True)
+    styles = {"lammps_sph": dict(color="tab:orange", marker="s", ms=3.0),
+              "sph_astro": dict(color="tab:blue", marker="o", ms=2.0)}
+    for ax, key, label in zip(axes, ("rho", "vx", "p"), (r"$\rho$", r"$v_x$", r"$P$")):
+        for run, data in datas:
+            x = data["x"]
+            sel = (x >= WINDOW[0] - 2) & (x <= WINDOW[1] + 2)
+            ax.plot(x[sel], data[key][sel], linestyle="none", label=run["label"],
+                    rasterized=True, **styles[run["key"]])
+        ax.plot(xs, exact[key], "-", lw=1.0, color="black", label="exact")
+        ax.set_ylabel(label)
+        ax.set_xlim(*WINDOW)
+        ax.grid(alpha=0.3)
+    axes[-1].set_xlabel("x")
+    axes[0].legend(loc="upper right")
+    fig.suptitle("3d shock tube (shock3d.lmp particles), t = 20, gamma = 1.4")
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    return path
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--np", type=int, default=1, help="MPI ranks per run (default 1)")
+    parser.add_argument("--outdir", default=os.path.join(ROOT, "build", "output",
+                                                         "sod_vs_lammps_sph"),
+                        help="scratch directory for logs, dumps and the plot")
+    parser.add_argument("--check", action="store_true",
+                        help=f"exit 1 unless SPH-ASTRO's L1(rho) and wall time are <= {BAR} x "
+                             "the SPH package's")
+    args = parser.parse_args(argv)
+    if args.np < 1:
+        parser.error("--np must be >= 1")
+
+    env, env_sh = load_environment()
+    if env_sh:
+        print(f"environment from {env_sh}")
+    if shutil.which("lmp", path=env.get("PATH")) is None:
+        print("error: lmp not found on PATH (source build/env.sh)")
+        return 2
+    outdir = os.path.abspath(args.outdir)
+    os.makedirs(outdir, exist_ok=True)
+
+    runs = [run_lammps(*spec, args.np, outdir, env) for spec in RUNS]
+    failed = [r["label"] for r in runs if not r["ok"]]
+
+    print()
+    check_reference_file(env)
+    print()
+
+    rows, datas = {}, []
+    for run in runs:
+        if not run["ok"]:
+            continue
+        data = particle_data(run["key"], run["dump"])
+        if data["time"] is not None and abs(data["time"] - TEND) > 1e-6 * TEND:
+            print(f"warning: {run['label']} dump is at t = {data['time']}, not {TEND}")
+        err = l1_errors(data)
+        if err["nan"]:
+            print(f"warning: {run['label']} dump holds {err['nan']} non-finite values")
+        rows[run["key"]] = (run, err, l1_errors(data, 0.0))
+        datas.append((run, data))
+
+    header = (f"{'code':<11} {'particles':>9} {'steps':>6} {'wall s':>7} {'loop s':>7} "
+              f"{'particle-steps/s':>16} {'L1 rho':>9} {'L1 vx':>9} {'L1 P':>9}")
+    print(f"np = {args.np}; L1 = mean over the {', '.join(str(r[1]['n']) for r in rows.values())}"
+          f" particles with {WINDOW[0]:g} <= x <= {WINDOW[1]:g} at t = {TEND:g}, x0 = {X0:g}")
+    print(header)
+    print("-" * len(header))
+    for run, err, _ in rows.values():
+        rate = run["atoms"] * run["steps"] / run["wall"]
+        print(f"{run['label']:<11} {run['atoms']:>9d} {run['steps']:>6d} {run['wall']:>7.2f} "
+              f"{run['loop']:>7.2f} {rate:>16.3e} {err['rho']:>9.3e} {err['vx']:>9.3e} "
+              f"{err['p']:>9.3e}")
+    for run, _, err0 in rows.values():
+        print(f"  ({run['label']} against the exact solution with x0 = 0, the convention of "
+              f"exact_solution.dat: L1 rho {err0['rho']:.3e}, vx {err0['vx']:.3e}, "
+              f"P {err0['p']:.3e})")
+
+    status = 0
+    if "lammps_sph" in rows and "sph_astro" in rows:
+        ref_run, ref_err, _ = rows["lammps_sph"]
+        new_run, new_err, _ = rows["sph_astro"]
+        l1_ratio = new_err["rho"] / ref_err["rho"] if ref_err["rho"] > 0 else math.inf
+        wall_ratio = new_run["wall"] / ref_run["wall"]
+        print()
+        print(f"L1(rho) ratio SPH-ASTRO / SPH package = {l1_ratio:.3f}")
+        print(f"wall time ratio SPH-ASTRO / SPH package = {wall_ratio:.3f}"
+              f"  (loop time ratio {new_run['loop'] / ref_run['loop']:.3f})")
+        png = plot(datas, os.path.join(outdir, "sod_vs_lammps_sph.png"))
+        print(f"profile plot: {png}")
+        if args.check:
+            ok_l1 = l1_ratio <= BAR          # False for NaN
+            ok_wall = wall_ratio <= BAR
+            print(f"check L1(rho) ratio {l1_ratio:.3f} <= {BAR}: {'ok' if ok_l1 else 'FAILED'}")
+            print(f"check wall time ratio {wall_ratio:.3f} <= {BAR}: "
+                  f"{'ok' if ok_wall else 'FAILED'}")
+            if not (ok_l1 and ok_wall):
+                status = 1
+    elif args.check:
+        status = 1
+    if failed:
+        print(f"failed run(s): {', '.join(failed)}; logs in {outdir}")
+        return 2
+    return status
+
+
+if __name__ == "__main__":
+    sys.exit(main())
