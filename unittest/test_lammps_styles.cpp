@@ -4,6 +4,8 @@
 
 #include "lammps_fixture.h"
 
+#include "compute.h"
+
 #include <cmath>
 #include <cstdio>
 
@@ -94,6 +96,44 @@ TEST(FixSPHAstro, StopsAtTend)
                   (lmp->update->ntimestep - lmp->update->atimestep) * lmp->update->dt,
               0.0375, 1e-12);
   EXPECT_LT(lmp->update->ntimestep, 1000);
+}
+
+TEST(FixSPHAstro, ChangesBetweenRunsReachTheFirstForceEvaluation)
+{
+  // `set d_u` between two runs must be seen by the next run's first pressure, although the
+  // predictions of the previous run are kept when nothing changed
+  auto lmp = open_lammps();
+  gas(lmp, "box", 3, PAIR, "sph/astro", 1.0, 0.0);
+  commands(lmp, {"velocity all set 0 0 0", "set group all d_u 1.0",
+                 "compute sph all sph/astro/atom pressure rho", "run 3", "set group all d_u 2.0",
+                 "run 0"});
+  auto *array = static_cast<double **>(
+      lammps_extract_compute(lmp.get(), "sph", LMP_STYLE_ATOM, LMP_TYPE_ARRAY));
+  ASSERT_NE(array, nullptr);
+  for (int i = 0; i < lmp->atom->nlocal; i++)
+    EXPECT_NEAR(array[i][0], (2.0 / 3.0) * array[i][1] * 2.0, 1e-12);
+}
+
+TEST(FixSPHAstro, ThermoReportsTheStepThatReachesTend)
+{
+  auto lmp = open_lammps();
+  gas(lmp, "box", 3, PAIR, "sph/astro tend 0.3");
+  commands(lmp, {"thermo 1000", "run 100000"});
+  EXPECT_GT(lmp->update->ntimestep, 2);
+  // the compute was evaluated by thermo on the final step, with the energy tallied
+  const auto end = global_vector(lmp, "sum", 12);
+  ASSERT_EQ(end.size(), 12u);
+  auto *compute = lmp->modify->get_compute_by_id("sum");
+  ASSERT_NE(compute, nullptr);
+  EXPECT_EQ(compute->invoked_vector, lmp->update->ntimestep);
+}
+
+TEST(FixSPHAstro, OnlyOneInstance)
+{
+  auto lmp = open_lammps();
+  gas(lmp, "box", 2, PAIR, "sph/astro");
+  commands(lmp, {"fix gas2 all sph/astro"});
+  EXPECT_NE(error_of(lmp, "run 0").find("only one instance"), std::string::npos);
 }
 
 TEST(ComputeSPHAstroAtom, UniformDensityAndPressure)

@@ -25,7 +25,7 @@ ComputeSPHAstroAtom::ComputeSPHAstroAtom(LAMMPS *lmp, int narg, char **arg) :
   static const char *names[] = {"rho", "h", "pressure", "cs", "u", "nneigh", "divv", "dudt"};
   const int nnames = sizeof(names) / sizeof(names[0]);
   if (narg == 3)
-    for (int k = 0; k < 6; k++) fields_.push_back(static_cast<Field>(k));
+    for (int k = 0; k < nnames; k++) fields_.push_back(static_cast<Field>(k));
   for (int iarg = 3; iarg < narg; iarg++) {
     int k = 0;
     while (k < nnames && strcmp(arg[iarg], names[k]) != 0) k++;
@@ -70,6 +70,11 @@ void ComputeSPHAstroAtom::compute_peratom()
       array_atom = array_;
     }
   }
+  if (pair_->computed_step() != update->ntimestep || pair_->computed_nlocal() != nlocal)
+    error->all(FLERR,
+               "compute sph/astro/atom: pair sph/astro last evaluated step {} with {} local "
+               "atoms, not the current step {} with {}; use it during or right after a run",
+               pair_->computed_step(), pair_->computed_nlocal(), update->ntimestep, nlocal);
   int ncol;
   const double *columns[8] = {atom->dvector[state_.rho],
                               atom->dvector[state_.h],

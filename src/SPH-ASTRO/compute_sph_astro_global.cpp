@@ -6,8 +6,9 @@
 //   1 mass  2-4 momentum  5-7 angular momentum about the origin  8 kinetic energy
 //   9 thermal energy sum m u (EOS-consistent u for polytropes, 0 for the isothermal gas)
 //   10 potential energy (pair, kspace and fix contributions, as compute pe)
-//   11 total energy  12 (E - E0)/|E0|, E0 the total energy when first evaluated; fix
-//   sph/astro keeps E0 across restarts.
+//   11 total energy  12 (E - E0)/|E0|, E0 the total energy when this compute was first
+//   evaluated; fix sph/astro keeps E0 (per compute ID) across restarts.
+// Sums run over the compute's group; the potential energy is that of the whole system.
 
 #include "compute_sph_astro_global.h"
 
@@ -32,7 +33,9 @@ ComputeSPHAstroGlobal::ComputeSPHAstroGlobal(LAMMPS *lmp, int narg, char **arg) 
     error->all(FLERR, "compute sph/astro/global takes no arguments (got {})", narg - 3);
   vector_flag = 1;
   size_vector = NVALUES;
-  extvector = 0;
+  extvector = -1;    // sums are extensive, the relative energy error is not
+  extlist = new int[NVALUES];
+  for (int k = 0; k < NVALUES; k++) extlist[k] = (k == DEREL) ? 0 : 1;
   peflag = 1;    // the potential energy must be tallied on the steps this compute is used
   timeflag = 1;
   vector = new double[NVALUES];
@@ -41,6 +44,7 @@ ComputeSPHAstroGlobal::ComputeSPHAstroGlobal(LAMMPS *lmp, int narg, char **arg) 
 ComputeSPHAstroGlobal::~ComputeSPHAstroGlobal()
 {
   delete[] vector;
+  delete[] extlist;
 }
 
 void ComputeSPHAstroGlobal::init()
@@ -104,7 +108,7 @@ void ComputeSPHAstroGlobal::compute_vector()
 
   double e0;
   if (fix_)
-    e0 = fix_->reference_energy(vector[ETOT]);
+    e0 = fix_->reference_energy(id, vector[ETOT]);
   else {
     if (!own_reference_set_) {
       own_reference_ = vector[ETOT];

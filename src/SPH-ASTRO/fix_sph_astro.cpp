@@ -2,8 +2,7 @@
    SPH-ASTRO: astrophysical smoothed particle hydrodynamics for LAMMPS
 ------------------------------------------------------------------------- */
 
-// Fix sph/astro: kick-drift-kick leapfrog of x, v and u (seed 001 "leapfrog/KDK";
-// seed 004 sec. 9.3) with the predicted v and u the pair style uses for the viscosity and
+// Fix sph/astro: kick-drift-kick leapfrog of x, v and u (seed 001, "leapfrog/KDK") with the predicted v and u the pair style uses for the viscosity and
 // the equation of state at the end of the step:
 //   v^{n+1/2} = v^n + dt/2 a^n,  x^{n+1} = x^n + dt v^{n+1/2},  v_est = v^{n+1/2} + dt/2 a^n
 //   u^{n+1/2} = u^n + dt/2 du^n, u_est = u^{n+1/2} + dt/2 du^n
@@ -27,6 +26,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
@@ -112,10 +112,14 @@ void FixSPHAstro::init()
   if (!find_state(lmp, state_))
     error->all(FLERR, "fix sph/astro: the per-particle state fix {} is missing", STATE_FIX_ID);
   evolve_u_ = pair_->eos().uses_energy();
+  if (modify->get_fix_by_style("^sph/astro$").size() > 1)
+    error->all(FLERR,
+               "fix sph/astro: only one instance is allowed (it sets the global timestep); use "
+               "one fix for all SPH particles");
 
-  // predictions are only kept when they belong to this step (continued or restarted run):
-  // otherwise the viscosity and EOS start from the current v and u
-  if (predicted_step_ != update->ntimestep) {
+  // predictions are kept only when they belong to this step and v and u are as the last run
+  // left them (a continued or restarted run); after `velocity` or `set` they start anew
+  if (predicted_step_ != update->ntimestep || hash_velocity_energy() != state_hash_) {
     const int nlocal = atom->nlocal;
     double **v = atom->v;
     double **vest = atom->darray[state_.vest];
@@ -133,6 +137,7 @@ void FixSPHAstro::init()
 void FixSPHAstro::setup(int /*vflag*/)
 {
   stopped_at_tend_ = false;
+  user_dt_ = update->dt;
   if (tend_ > 0.0 && current_time() >= tend_ * (1.0 - 1e-12)) {
     if (comm->me == 0)
       error->warning(FLERR, "fix sph/astro: time {} already at tend {}: the run stops at once",
@@ -141,7 +146,10 @@ void FixSPHAstro::setup(int /*vflag*/)
     timer->force_timeout();
     return;
   }
+  // fixes defined after this one add their setup forces later: the first step's dt is taken
+  // again at the start of step 1, when all forces are in
   next_timestep();
+  dt_pending_ = true;
 }
 
 double FixSPHAstro::current_time() const
@@ -151,6 +159,10 @@ double FixSPHAstro::current_time() const
 
 void FixSPHAstro::initial_integrate(int /*vflag*/)
 {
+  if (dt_pending_) {
+    dt_pending_ = false;
+    next_timestep();
+  }
   const double dt = update->dt;
   const double dtf = 0.5 * dt;
   double **x = atom->x;
@@ -229,16 +241,58 @@ void FixSPHAstro::end_of_step()
                      update->ntimestep);
     return;
   }
-  next_timestep();
+  next_timestep(true);
 }
 
 void FixSPHAstro::post_run()
 {
   // a stop at tend ends this run only; later runs get the user's timeout back
   if (stopped_at_tend_) timer->reset_timeout();
+  // a fixed step shortened to land on tend is the user's step again
+  if (!adaptive_ && update->dt != user_dt_) set_timestep(user_dt_);
+  state_hash_ = hash_velocity_energy();
 }
 
-void FixSPHAstro::next_timestep()
+// order-independent hash of every atom's ID, v and u: XOR over atoms of a mixed 64-bit value
+uint64_t FixSPHAstro::hash_velocity_energy() const
+{
+  auto mix = [](uint64_t z) {    // splitmix64 finaliser
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  };
+  auto bits = [](double value) {
+    uint64_t b;
+    memcpy(&b, &value, sizeof(b));
+    return b;
+  };
+  const double *u = atom->dvector[state_.u];
+  double **v = atom->v;
+  uint64_t local = 0;
+  for (int i = 0; i < atom->nlocal; i++) {
+    uint64_t h = mix(static_cast<uint64_t>(atom->tag[i]));
+    h = mix(h ^ bits(v[i][0]));
+    h = mix(h ^ bits(v[i][1]));
+    h = mix(h ^ bits(v[i][2]));
+    h = mix(h ^ bits(u[i]));
+    local ^= h;
+  }
+  uint64_t all = 0;
+  MPI_Allreduce(&local, &all, 1, MPI_UINT64_T, MPI_BXOR, world);
+  return all;
+}
+
+// make thermo (and the computes it needs) report the step that reaches tend
+void FixSPHAstro::schedule_output(bigint step)
+{
+  if (output->next_thermo > step) {
+    output->next_thermo = step;
+    output->next = MIN(output->next, step);
+    modify->addstep_compute(step);
+  }
+}
+
+void FixSPHAstro::next_timestep(bool from_end_of_step)
 {
   double dt = update->dt;
   if (adaptive_) {
@@ -256,28 +310,37 @@ void FixSPHAstro::next_timestep()
 
     struct {
       double value;
-      int rank_index;
-    } mine[2] = {{INFINITY, -1}, {INFINITY, -1}}, all[2];
+      int rank;
+    } mine[2] = {{INFINITY, comm->me}, {INFINITY, comm->me}}, all[2];
+    tagint limiting[2] = {0, 0};
     for (int i = 0; i < nlocal; i++) {
       if (!(mask[i] & groupbit)) continue;
       const double hdiv = h[i] * std::fabs(divv[i]);
       const double vsig = cs[i] + hdiv + 1.2 * (alpha * cs[i] + beta * hdiv);
       if (vsig > 0.0) {
         const double dtcv = courant_ * h[i] / vsig;
-        if (dtcv < mine[0].value) mine[0] = {dtcv, static_cast<int>(atom->tag[i])};
+        if (dtcv < mine[0].value) {
+          mine[0].value = dtcv;
+          limiting[0] = atom->tag[i];
+        }
       }
       const double m = rmass ? rmass[i] : mass[type[i]];
       const double a = std::sqrt(f[i][0] * f[i][0] + f[i][1] * f[i][1] + f[i][2] * f[i][2]) / m;
       if (a > 0.0) {
         const double dtf = force_factor_ * std::sqrt(h[i] / a);
-        if (dtf < mine[1].value) mine[1] = {dtf, static_cast<int>(atom->tag[i])};
+        if (dtf < mine[1].value) {
+          mine[1].value = dtf;
+          limiting[1] = atom->tag[i];
+        }
       }
     }
     MPI_Allreduce(mine, all, 2, MPI_DOUBLE_INT, MPI_MINLOC, world);
     last_dt_cv_ = all[0].value;
     last_dt_force_ = all[1].value;
     const double dtnew = MIN(all[0].value, all[1].value);
-    last_limiting_atom_ = all[0].value <= all[1].value ? all[0].rank_index : all[1].rank_index;
+    const int which = all[0].value <= all[1].value ? 0 : 1;
+    last_limiting_atom_ = limiting[which];
+    MPI_Bcast(&last_limiting_atom_, 1, MPI_LMP_TAGINT, all[which].rank, world);
     // with no finite constraint (isolated cold particles) the step stays as it is
     if (std::isfinite(dtnew)) dt = dtnew;
     if (dtmax_ > 0.0) dt = MIN(dt, dtmax_);
@@ -289,7 +352,11 @@ void FixSPHAstro::next_timestep()
   }
   if (tend_ > 0.0) {
     const double remaining = tend_ - current_time();
-    if (remaining > 0.0 && dt > remaining) dt = remaining;
+    if (remaining > 0.0 && dt >= remaining * (1.0 - 1e-12)) {
+      dt = remaining;
+      // from end_of_step the new dt is that of the next step, which then reaches tend
+      if (from_end_of_step) schedule_output(update->ntimestep + 1);
+    }
   }
   if (!(dt > 0.0) || !std::isfinite(dt))
     error->all(FLERR, "fix sph/astro: timestep {} at step {} is not positive and finite", dt,
@@ -319,30 +386,46 @@ double FixSPHAstro::compute_vector(int n)
   return n == 0 ? last_dt_cv_ : last_dt_force_;
 }
 
-double FixSPHAstro::reference_energy(double current)
+double FixSPHAstro::reference_energy(const std::string &compute_id, double current)
 {
-  if (!have_reference_) {
-    reference_energy_ = current;
-    have_reference_ = 1;
-  }
-  return reference_energy_;
+  auto found = reference_energy_.find(compute_id);
+  if (found != reference_energy_.end()) return found->second;
+  reference_energy_[compute_id] = current;
+  return current;
 }
 
+// global restart data: predicted step, hash of v and u, and the reference energies as
+// (length of ID, ID characters, energy) records, all stored as doubles
 void FixSPHAstro::write_restart(FILE *fp)
 {
-  if (comm->me == 0) {
-    double list[4] = {static_cast<double>(predicted_step_), static_cast<double>(have_reference_),
-                      reference_energy_, update->dt};
-    int size = sizeof(list);
-    fwrite(&size, sizeof(int), 1, fp);
-    fwrite(list, sizeof(double), 4, fp);
+  if (comm->me != 0) return;
+  std::vector<double> list = {static_cast<double>(predicted_step_),
+                              static_cast<double>(state_hash_ >> 32),
+                              static_cast<double>(state_hash_ & 0xffffffffULL),
+                              static_cast<double>(reference_energy_.size())};
+  for (const auto &[id, energy] : reference_energy_) {
+    list.push_back(static_cast<double>(id.size()));
+    for (char c : id) list.push_back(static_cast<double>(c));
+    list.push_back(energy);
   }
+  int size = static_cast<int>(list.size() * sizeof(double));
+  fwrite(&size, sizeof(int), 1, fp);
+  fwrite(list.data(), sizeof(double), list.size(), fp);
 }
 
 void FixSPHAstro::restart(char *buf)
 {
   auto *list = reinterpret_cast<double *>(buf);
-  predicted_step_ = static_cast<bigint>(list[0]);
-  have_reference_ = static_cast<int>(list[1]);
-  reference_energy_ = list[2];
+  int n = 0;
+  predicted_step_ = static_cast<bigint>(list[n++]);
+  state_hash_ = static_cast<uint64_t>(list[n++]) << 32;
+  state_hash_ |= static_cast<uint64_t>(list[n++]);
+  const int nref = static_cast<int>(list[n++]);
+  reference_energy_.clear();
+  for (int k = 0; k < nref; k++) {
+    const int len = static_cast<int>(list[n++]);
+    std::string id;
+    for (int c = 0; c < len; c++) id += static_cast<char>(list[n++]);
+    reference_energy_[id] = list[n++];
+  }
 }

@@ -14,6 +14,10 @@ FixStyle(sph/astro,FixSPHAstro);
 #include "fix.h"
 #include "sph_astro_state.h"
 
+#include <cstdint>
+#include <map>
+#include <string>
+
 namespace LAMMPS_NS {
 
 class FixSPHAstro : public Fix {
@@ -33,8 +37,9 @@ class FixSPHAstro : public Fix {
   void write_restart(FILE *) override;
   void restart(char *) override;
 
-  // reference total energy for compute sph/astro/global: set once, kept across restarts
-  double reference_energy(double current);
+  // reference total energy of a compute sph/astro/global (by compute ID): set at its first
+  // evaluation, kept across restarts
+  double reference_energy(const std::string &compute_id, double current);
 
  protected:
   double courant_ = 0.3;         // C in dt = C h / (c + h|div v| + 1.2 (alpha c + beta h|div v|))
@@ -50,16 +55,20 @@ class FixSPHAstro : public Fix {
   bool evolve_u_ = true;
 
   // restart state
-  bigint predicted_step_ = -1;    // step at which d2_vest/d_uest hold predictions
-  int have_reference_ = 0;
-  double reference_energy_ = 0.0;
+  bigint predicted_step_ = -1;       // step at which d2_vest/d_uest hold predictions
+  uint64_t state_hash_ = 0;          // hash of v and u when the last run ended
+  std::map<std::string, double> reference_energy_;
+  bool dt_pending_ = false;          // first dt of a run: set once all setup forces are in
+  double user_dt_ = 0.0;             // with dt fixed: the step to restore after a tend clip
 
   double last_dt_cv_ = 0.0, last_dt_force_ = 0.0;
   tagint last_limiting_atom_ = 0;
 
-  void next_timestep();
+  void next_timestep(bool from_end_of_step = false);
   void set_timestep(double dt);
   double current_time() const;
+  uint64_t hash_velocity_energy() const;
+  void schedule_output(bigint step);
 };
 
 }    // namespace LAMMPS_NS

@@ -97,6 +97,13 @@ void PairSPHAstro::grow_work_arrays()
 
 void PairSPHAstro::settings(int narg, char **arg)
 {
+  // a repeated pair_style command starts again from the defaults
+  kernel_ = KernelType::CUBIC;
+  eos_ = EOS();
+  visc_on_ = true;
+  visc_alpha_ = 1.0;
+  visc_beta_ = 2.0;
+  visc_eps_ = 0.01;
   int iarg = 0;
   while (iarg < narg) {
     const std::string key = arg[iarg];
@@ -479,6 +486,8 @@ void PairSPHAstro::compute(int eflag, int vflag)
       break;
   }
   if (vflag_fdotr) virial_fdotr_compute();
+  computed_step_ = update->ntimestep;
+  computed_nlocal_ = atom->nlocal;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -609,7 +618,7 @@ void PairSPHAstro::read_restart_settings(FILE *fp)
 void *PairSPHAstro::extract(const char *name, int &dim)
 {
   dim = 0;
-  if (strcmp(name, "kernel_support") == 0) return (void *) &kernel_radius_;
+  if (strcmp(name, "kernel_radius") == 0) return (void *) &kernel_radius_;
   if (strcmp(name, "alpha") == 0) return (void *) &visc_alpha_;
   if (strcmp(name, "beta") == 0) return (void *) &visc_beta_;
   return nullptr;

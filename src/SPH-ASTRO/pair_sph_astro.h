@@ -44,10 +44,13 @@ class PairSPHAstro : public Pair {
 
   // physics settings read by the package's fixes and computes
   const SPHAstro::EOS &eos() const { return eos_; }
-  double kernel_support() const { return kernel_radius_; }
+  double kernel_radius() const { return kernel_radius_; }    // support = kernel_radius * h
   double alpha() const { return visc_alpha_; }
   double beta() const { return visc_beta_; }
   bool has_viscosity() const { return visc_on_; }
+  // the per-atom values of extract_peratom() belong to this step and these local atoms
+  bigint computed_step() const { return computed_step_; }
+  int computed_nlocal() const { return computed_nlocal_; }
 
  protected:
   SPHAstro::KernelType kernel_ = SPHAstro::KernelType::CUBIC;
@@ -68,6 +71,9 @@ class PairSPHAstro : public Pair {
   double *vdotgradw_ = nullptr;     // sum_j m_j v_ij . grad_i W_ij  (= -rho_i div v_i)
   double *divv_ = nullptr;          // div v
   double *nneigh_ = nullptr;        // neighbours inside the kernel support
+
+  bigint computed_step_ = -1;
+  int computed_nlocal_ = -1;
 
   enum class Stage { DENSITY, FORCE };
   Stage comm_stage_ = Stage::DENSITY;

@@ -46,7 +46,6 @@ Fix *ensure_state(LAMMPS *lmp, const char *caller)
   Modify *modify = lmp->modify;
   Fix *fix = modify->get_fix_by_id(STATE_FIX_ID);
   if (!fix) {
-    StateIndex idx;
     int flag, cols;
     for (const char *name : {"rho", "h", "u", "dudt", "uest", "vest"})
       if (lmp->atom->find_custom(name, flag, cols) >= 0)
