@@ -4,7 +4,7 @@
 set -euo pipefail
 build=$1 np=$2 scene=$3 bounds=$4; shift 4
 here=$(cd "$(dirname "$0")/.." && pwd)
-work=$build/test_output/${scene}_np${np}
+work=$build/test_output/${scene}_np${np}_$(echo "$*" | tr -c "a-zA-Z0-9.\n" "_")
 mkdir -p "$work" && cd "$work"
 mpirun -np "$np" lmp -in "$here/examples/$scene/in.$scene" -log log.$scene -screen none \
   -var out dump.$scene "$@"

@@ -1,4 +1,5 @@
-// Equations of state: pressure, sound speed and the energy used for bookkeeping.
+// Equations of state: pressure, sound speed and the energy used for
+// bookkeeping.
 
 #include "sph_astro_eos.h"
 
@@ -8,8 +9,7 @@
 
 using namespace SPHAstro;
 
-TEST(EOS, IdealGas)
-{
+TEST(EOS, IdealGas) {
   EOS eos;
   eos.type = EOSType::IDEAL;
   eos.gamma = 5.0 / 3.0;
@@ -29,20 +29,18 @@ TEST(EOS, IdealGas)
   EXPECT_EQ(c, 0.0);
 }
 
-TEST(EOS, Isothermal)
-{
+TEST(EOS, Isothermal) {
   EOS eos;
   eos.type = EOSType::ISOTHERMAL;
   eos.cs = 0.5;
   double P, c;
-  eos.pressure_soundspeed(2.0, 123.0, P, c);    // u does not enter
+  eos.pressure_soundspeed(2.0, 123.0, P, c); // u does not enter
   EXPECT_DOUBLE_EQ(P, 0.5);
   EXPECT_DOUBLE_EQ(c, 0.5);
   EXPECT_FALSE(eos.uses_energy());
 }
 
-TEST(EOS, Polytropic)
-{
+TEST(EOS, Polytropic) {
   // toy star (seed 001): P = k rho^(1+1/n), n = 1 -> gamma = 2
   EOS eos;
   eos.type = EOSType::POLYTROPIC;
@@ -53,7 +51,8 @@ TEST(EOS, Polytropic)
   EXPECT_NEAR(P, 0.9, 1e-15);
   EXPECT_NEAR(c, std::sqrt(2.0 * 0.9 / 3.0), 1e-15);
   EXPECT_FALSE(eos.uses_energy());
-  // u = P / ((gamma - 1) rho), the energy whose sum with the kinetic energy is conserved
+  // u = P / ((gamma - 1) rho), the energy whose sum with the kinetic energy is
+  // conserved
   EXPECT_NEAR(eos.energy_of(3.0, 0.0), 0.9 / 3.0, 1e-15);
   // c_s^2 = dP/drho
   const double d = 1e-6;

@@ -55,11 +55,11 @@ class FixSPHAstro : public Fix {
   bool evolve_u_ = true;
 
   // restart state
-  bigint predicted_step_ = -1;       // step at which d2_vest/d_uest hold predictions
-  uint64_t state_hash_ = 0;          // hash of v and u when the last run ended
+  bigint predicted_step_ = -1;    // step at which d2_vest/d_uest hold predictions
+  uint64_t state_hash_ = 0;       // hash of v and u when the last run ended
   std::map<std::string, double> reference_energy_;
-  bool dt_pending_ = false;          // first dt of a run: set once all setup forces are in
-  double user_dt_ = 0.0;             // with dt fixed: the step to restore after a tend clip
+  bool dt_pending_ = false;    // first dt of a run: set once all setup forces are in
+  double user_dt_ = 0.0;       // with dt fixed: the step to restore after a tend clip
 
   double last_dt_cv_ = 0.0, last_dt_force_ = 0.0;
   tagint last_limiting_atom_ = 0;

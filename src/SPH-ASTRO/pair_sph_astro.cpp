@@ -19,6 +19,8 @@
 
 #include "pair_sph_astro.h"
 
+#include "fix_sph_astro_h.h"
+
 #include "atom.h"
 #include "comm.h"
 #include "domain.h"
@@ -27,6 +29,7 @@
 #include "memory.h"
 #include "modify.h"
 #include "neigh_list.h"
+#include "neigh_request.h"
 #include "neighbor.h"
 #include "update.h"
 #include "utils.h"
@@ -44,7 +47,7 @@ PairSPHAstro::PairSPHAstro(LAMMPS *lmp) : Pair(lmp)
   restartinfo = 1;
   one_coeff = 1;
   manybody_flag = 1;    // forces depend on densities of both partners
-  comm_forward = 6;     // rho, P, c_s, vest[3]
+  comm_forward = 8;     // rho, P, c_s, vest[3], h, Omega
   comm_reverse = 2;     // density pass: rho, nneigh; force pass: dudt, sum v.gradW
 }
 
@@ -56,7 +59,8 @@ PairSPHAstro::~PairSPHAstro()
   memory->destroy(vdotgradw_);
   memory->destroy(divv_);
   memory->destroy(nneigh_);
-  memory->destroy(hmax_type_);
+  memory->destroy(omega_);
+  memory->destroy(hcap_type_);
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
@@ -71,7 +75,7 @@ void PairSPHAstro::allocate()
   for (int i = 1; i < n; i++)
     for (int j = i; j < n; j++) setflag[i][j] = 0;
   memory->create(cutsq, n, n, "pair:cutsq");
-  memory->create(hmax_type_, n, "pair:hmax_type");
+  memory->create(hcap_type_, n, "pair:hcap_type");
 }
 
 void PairSPHAstro::grow_work_arrays()
@@ -83,6 +87,8 @@ void PairSPHAstro::grow_work_arrays()
   memory->destroy(vdotgradw_);
   memory->destroy(divv_);
   memory->destroy(nneigh_);
+  memory->destroy(omega_);
+  memory->create(omega_, nmax_, "pair:sph/astro:omega");
   memory->create(pressure_, nmax_, "pair:sph/astro:pressure");
   memory->create(soundspeed_, nmax_, "pair:sph/astro:soundspeed");
   memory->create(vdotgradw_, nmax_, "pair:sph/astro:vdotgradw");
@@ -232,6 +238,14 @@ void PairSPHAstro::init_style()
   if (domain->dimension != 2 && domain->dimension != 3)
     error->all(FLERR, "pair_style sph/astro: dimension {} not supported", domain->dimension);
 
+  auto hfixes = modify->get_fix_by_style("^sph/astro/h$");
+  hfix_ = hfixes.empty() ? nullptr : dynamic_cast<FixSPHAstroH *>(hfixes.front());
+  if (!hfix_)
+    hmode_ = HMode::FIXED;
+  else
+    hmode_ = hfix_->mode() == FixSPHAstroH::Mode::ITERATE ? HMode::GRADH : HMode::DHDT;
+  const double margin = hfix_ ? hfix_->margin() : 1.0;
+
   // every particle needs a positive mass and smoothing length; the list cutoffs are set
   // by the largest h of each type
   const int nlocal = atom->nlocal;
@@ -253,11 +267,14 @@ void PairSPHAstro::init_style()
                  atom->tag[i], h[i]);
     hmax_local[type[i]] = MAX(hmax_local[type[i]], h[i]);
   }
-  MPI_Allreduce(hmax_local.data(), hmax_type_, ntypes + 1, MPI_DOUBLE, MPI_MAX, world);
+  MPI_Allreduce(hmax_local.data(), hcap_type_, ntypes + 1, MPI_DOUBLE, MPI_MAX, world);
   double hmax = 0.0;
-  for (int t = 1; t <= ntypes; t++) hmax = MAX(hmax, hmax_type_[t]);
+  for (int t = 1; t <= ntypes; t++) hmax = MAX(hmax, hcap_type_[t]);
   if (hmax <= 0.0)
     error->all(FLERR, "pair_style sph/astro: no particle has h > 0 (set group all d_h VALUE)");
+  // a type without particles yet gets the largest h of all
+  for (int t = 1; t <= ntypes; t++)
+    hcap_type_[t] = margin * (hcap_type_[t] > 0.0 ? hcap_type_[t] : hmax);
 
   const double support = kernel_radius_ * hmax;
   if (neighbor->skin > support && comm->me == 0)
@@ -267,17 +284,28 @@ void PairSPHAstro::init_style()
                    "usual",
                    neighbor->skin, support);
 
-  neighbor->add_request(this);
+  if (hmode_ == HMode::GRADH) {
+    // full list for the per-particle h iteration, half list for the pair forces
+    neighbor->add_request(this, NeighConst::REQ_FULL)->set_id(1);
+    neighbor->add_request(this)->set_id(2);
+  } else
+    neighbor->add_request(this);
+}
+
+void PairSPHAstro::init_list(int id, NeighList *ptr)
+{
+  if (hmode_ == HMode::GRADH && id == 1)
+    listfull_ = ptr;
+  else
+    list = ptr;
 }
 
 double PairSPHAstro::init_one(int i, int j)
 {
   if (setflag[i][j] == 0)
     error->all(FLERR, "pair_style sph/astro: pair_coeff for types {} {} is not set", i, j);
-  // a type without particles yet still gets the cutoff of its partner
-  const double hi = hmax_type_[i] > 0.0 ? hmax_type_[i] : hmax_type_[j];
-  const double hj = hmax_type_[j] > 0.0 ? hmax_type_[j] : hmax_type_[i];
-  return kernel_radius_ * 0.5 * (hi + hj);
+  if (hmode_ == HMode::GRADH) return kernel_radius_ * MAX(hcap_type_[i], hcap_type_[j]);
+  return kernel_radius_ * 0.5 * (hcap_type_[i] + hcap_type_[j]);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -294,11 +322,12 @@ void PairSPHAstro::equation_of_state()
     if (!(rho[i] > 0.0) || !std::isfinite(rho[i]))
       error->one(FLERR, "pair_style sph/astro: atom {} has density {} (position not finite?)",
                  tag[i], rho[i]);
-    if (h[i] > hmax_type_[type[i]])
+    if (h[i] > hcap_type_[type[i]])
       error->one(FLERR,
                  "pair_style sph/astro: atom {} has h = {} larger than the h = {} the neighbour "
-                 "lists of its type were built for; h changed during a run",
-                 tag[i], h[i], hmax_type_[type[i]]);
+                 "lists of its type were built for; h was changed during a run (fix "
+                 "sph/astro/h keeps h below that cap)",
+                 tag[i], h[i], hcap_type_[type[i]]);
     const double u = uest[i];
     if (eos_.uses_energy() && (!(u >= 0.0) || !std::isfinite(u)))
       error->one(FLERR,
@@ -335,8 +364,12 @@ template <class KERNEL, int DIM, bool ENERGY, bool VISC> void PairSPHAstro::eval
   const double R2 = K::radius * K::radius;
   const double w0 = K::w(0.0);
 
-  // pass 1: density
+  // pass 1: density (with dh/dt the ghosts first need this step's h)
 
+  if (hmode_ == HMode::DHDT) {
+    comm_stage_ = Stage::SMOOTHING_LENGTH;
+    comm->forward_comm(this, 1);
+  }
   for (int i = 0; i < nzero; i++) {
     rho[i] = 0.0;
     nneigh_[i] = 0.0;
@@ -374,6 +407,7 @@ template <class KERNEL, int DIM, bool ENERGY, bool VISC> void PairSPHAstro::eval
     comm->reverse_comm(this);
   }
   equation_of_state();
+  comm_stage_ = Stage::DENSITY;
   comm->forward_comm(this);
 
   // pass 2: accelerations, du/dt, div v
@@ -446,17 +480,246 @@ template <class KERNEL, int DIM, bool ENERGY, bool VISC> void PairSPHAstro::eval
   }
 }
 
+/* ----------------------------------------------------------------------
+   variable h with grad-h terms (Springel & Hernquist 2002, MNRAS 333, 649; Price 2012,
+   J. Comput. Phys. 231, 759, sec. 2.4 and eqs. 101-107):
+     rho_i = sum_j m_j W(r_ij, h_i),  h_i = hfact (m_i / rho_i)^(1/d)
+     Omega_i = 1 - (dh_i/drho_i) sum_j m_j dW(r_ij, h_i)/dh_i,  dh/drho = -h / (d rho)
+     dv_i/dt = -sum_j m_j [P_i/(Omega_i rho_i^2) grad_i W_ij(h_i)
+                           + P_j/(Omega_j rho_j^2) grad_i W_ij(h_j) + Pi_ij gradbar_i W_ij]
+     du_i/dt = P_i/(Omega_i rho_i^2) sum_j m_j v_ij . grad_i W_ij(h_i)
+               + 1/2 sum_j m_j Pi_ij v_ij . gradbar_i W_ij
+   with gradbar W_ij = (grad W(h_i) + grad W(h_j))/2 (seed 000, "average of the kernel
+   contributions"). dW/dh = -sigma/h^(d+1) (d w(q) + q w'(q)).
+------------------------------------------------------------------------- */
+
+template <class KERNEL, int DIM> void PairSPHAstro::density_gradh()
+{
+  using K = Kernel<KERNEL, DIM>;
+  double **x = atom->x;
+  const int *type = atom->type;
+  const double *rmass = atom->rmass;
+  const double *mass = atom->mass;
+  double *rho = atom->dvector[state_.rho];
+  double *h = atom->dvector[state_.h];
+  const tagint *tag = atom->tag;
+
+  const int inum = listfull_->inum;
+  const int *ilist = listfull_->ilist;
+  const int *numneigh = listfull_->numneigh;
+  int **firstneigh = listfull_->firstneigh;
+
+  const double sigma = K::sigma();
+  const double R2 = K::radius * K::radius;
+  const double w0 = K::w(0.0);
+  const double hfact_d = std::pow(hfix_->hfact(), DIM);
+  const double tol = hfix_->tolerance();
+  const int maxiter = hfix_->max_iterations();
+
+  double iter_sum = 0.0;
+  int iter_max = 0, failures = 0, capped = 0;
+
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
+    const double mi = rmass ? rmass[i] : mass[type[i]];
+    const double cap = hcap_type_[type[i]];
+    const int *jlist = firstneigh[i];
+    const int jnum = numneigh[i];
+
+    double hi = MIN(h[i], cap);
+    double hlo = 0.0, hhi = INFINITY;    // f(h) = rho(h) - rho_target(h) rises with h
+    double rhoi = 0.0, dsum = 0.0, ni = 0.0;
+    bool converged = false, at_cap = false;
+    int it = 0;
+    while (it < maxiter) {
+      it++;
+      // rho(h) and sum_j m_j dW/dh at the current h
+      const double hinv = 1.0 / hi;
+      const double norm = sigma * inv_h_pow_dim<DIM>(hinv);
+      const double hR2 = R2 * hi * hi;
+      double w_sum = mi * w0, dwh_sum = -mi * DIM * w0;    // self term
+      ni = 0.0;
+      for (int jj = 0; jj < jnum; jj++) {
+        const int j = jlist[jj] & NEIGHMASK;
+        const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
+        const double r2 = dx * dx + dy * dy + dz * dz;
+        if (r2 >= hR2) continue;
+        const double q = std::sqrt(r2) * hinv;
+        const double mj = rmass ? rmass[j] : mass[type[j]];
+        const double w = K::w(q);
+        w_sum += mj * w;
+        dwh_sum -= mj * (DIM * w + q * K::dw(q));
+        ni += 1.0;
+      }
+      rhoi = norm * w_sum;
+      dsum = norm * hinv * dwh_sum;    // sum_j m_j dW/dh
+      const double rho_target = mi * hfact_d * inv_h_pow_dim<DIM>(hinv);
+      const double f = rhoi - rho_target;
+      const double fprime = dsum + DIM * rho_target * hinv;
+      if (f < 0.0)
+        hlo = hi;
+      else
+        hhi = hi;
+      double hnew = hi - f / fprime;
+      if (!(fprime > 0.0) || !(hnew > hlo) || !(hnew < hhi))
+        hnew = std::isfinite(hhi) ? 0.5 * (hlo + hhi) : 2.0 * hi;    // bisection fallback
+      if (hnew >= cap && hi >= cap) {    // wants to grow past the cap: stay there
+        at_cap = true;
+        converged = true;
+        break;
+      }
+      hnew = MIN(hnew, cap);
+      if (std::fabs(hnew - hi) < tol * hi) {
+        converged = true;
+        break;
+      }
+      hi = hnew;
+    }
+    if (!converged) failures++;
+    if (at_cap) capped++;
+    iter_sum += it;
+    iter_max = MAX(iter_max, it);
+    if (!(rhoi > 0.0) || !std::isfinite(rhoi) || !std::isfinite(hi))
+      error->one(FLERR, "pair_style sph/astro: atom {} has density {} at h = {}", tag[i], rhoi, hi);
+    h[i] = hi;
+    rho[i] = rhoi;
+    nneigh_[i] = ni;
+    // h held at the cap does not follow rho: Omega = 1
+    omega_[i] = at_cap ? 1.0 : 1.0 + hi / (DIM * rhoi) * dsum;
+    if (!(omega_[i] > 0.0)) omega_[i] = 1.0;
+  }
+  hfix_->record(iter_sum, iter_max, inum, failures, capped);
+}
+
+template <class KERNEL, int DIM, bool ENERGY, bool VISC> void PairSPHAstro::eval_gradh()
+{
+  using K = Kernel<KERNEL, DIM>;
+  double **x = atom->x;
+  double **f = atom->f;
+  const int *type = atom->type;
+  const double *rmass = atom->rmass;
+  const double *mass = atom->mass;
+  const double *rho = atom->dvector[state_.rho];
+  const double *h = atom->dvector[state_.h];
+  double *dudt = atom->dvector[state_.dudt];
+  double **vest = atom->darray[state_.vest];
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  const int newton_pair = force->newton_pair;
+  const int nzero = newton_pair ? nall : nlocal;
+
+  density_gradh<KERNEL, DIM>();
+  equation_of_state();
+  comm_stage_ = Stage::DENSITY;
+  comm->forward_comm(this);
+
+  const int inum = list->inum;
+  const int *ilist = list->ilist;
+  const int *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+  const double sigma = K::sigma();
+  const double R2 = K::radius * K::radius;
+  const double alpha = visc_alpha_, beta = visc_beta_, eps = visc_eps_;
+
+  for (int i = 0; i < nzero; i++) {
+    vdotgradw_[i] = 0.0;
+    if (ENERGY) dudt[i] = 0.0;
+  }
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
+    const double vxi = vest[i][0], vyi = vest[i][1], vzi = vest[i][2];
+    const double hi = h[i];
+    const double hinvi = 1.0 / hi;
+    const double normi = sigma * inv_h_pow_dim<DIM>(hinvi) * hinvi;
+    const double hR2i = R2 * hi * hi;
+    const double mi = rmass ? rmass[i] : mass[type[i]];
+    const double rhoi = rho[i];
+    const double prhoi = pressure_[i] / (omega_[i] * rhoi * rhoi);
+    const double ci = soundspeed_[i];
+    double fxi = 0.0, fyi = 0.0, fzi = 0.0, vgwi = 0.0, heati = 0.0;
+    const int *jlist = firstneigh[i];
+    const int jnum = numneigh[i];
+    for (int jj = 0; jj < jnum; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      const double hj = h[j];
+      const double hR2j = R2 * hj * hj;
+      if ((r2 >= hR2i && r2 >= hR2j) || r2 == 0.0) continue;
+      const double r = std::sqrt(r2);
+      const double rinv = 1.0 / r;
+      // (dW/dr)/r for h_i and h_j: grad_i W_ij(h) = dw * r_ij
+      const double dwi = r2 < hR2i ? normi * K::dw(r * hinvi) * rinv : 0.0;
+      const double hinvj = 1.0 / hj;
+      const double dwj =
+          r2 < hR2j ? sigma * inv_h_pow_dim<DIM>(hinvj) * hinvj * K::dw(r * hinvj) * rinv : 0.0;
+      const double dwbar = 0.5 * (dwi + dwj);
+      const double mj = rmass ? rmass[j] : mass[type[j]];
+      const double rhoj = rho[j];
+      const double prhoj = pressure_[j] / (omega_[j] * rhoj * rhoj);
+      const double dvx = vxi - vest[j][0], dvy = vyi - vest[j][1], dvz = vzi - vest[j][2];
+      const double vdotr = dvx * dx + dvy * dy + dvz * dz;
+      double visc = 0.0;
+      if (VISC && vdotr < 0.0) {
+        const double hij = 0.5 * (hi + hj);
+        const double mu = hij * vdotr / (r2 + eps * hij * hij);
+        visc = (-alpha * 0.5 * (ci + soundspeed_[j]) * mu + beta * mu * mu) / (0.5 * (rhoi + rhoj));
+      }
+      const double fpair = -mi * mj * (prhoi * dwi + prhoj * dwj + visc * dwbar);
+      fxi += dx * fpair;
+      fyi += dy * fpair;
+      fzi += dz * fpair;
+      vgwi += mj * vdotr * dwi;
+      if (ENERGY && VISC) heati += 0.5 * mj * visc * vdotr * dwbar;
+      if (newton_pair || j < nlocal) {
+        f[j][0] -= dx * fpair;
+        f[j][1] -= dy * fpair;
+        f[j][2] -= dz * fpair;
+        vdotgradw_[j] += mi * vdotr * dwj;
+        if (ENERGY && VISC) dudt[j] += 0.5 * mi * visc * vdotr * dwbar;
+      }
+      if (evflag) ev_tally(i, j, nlocal, newton_pair, 0.0, 0.0, fpair, dx, dy, dz);
+    }
+    f[i][0] += fxi;
+    f[i][1] += fyi;
+    f[i][2] += fzi;
+    vdotgradw_[i] += vgwi;
+    if (ENERGY) dudt[i] += heati;
+  }
+  if (newton_pair) {
+    comm_stage_ = Stage::FORCE;
+    comm->reverse_comm(this);
+  }
+  for (int i = 0; i < nlocal; i++) {
+    divv_[i] = -vdotgradw_[i] / (omega_[i] * rho[i]);
+    if (ENERGY) dudt[i] += pressure_[i] / (omega_[i] * rho[i] * rho[i]) * vdotgradw_[i];
+  }
+}
+
 template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
 {
   const bool energy = eos_.uses_energy();
-  if (energy && visc_on_)
-    eval<KERNEL, DIM, true, true>();
-  else if (energy)
-    eval<KERNEL, DIM, true, false>();
-  else if (visc_on_)
-    eval<KERNEL, DIM, false, true>();
-  else
-    eval<KERNEL, DIM, false, false>();
+  if (hmode_ == HMode::GRADH) {
+    if (energy && visc_on_)
+      eval_gradh<KERNEL, DIM, true, true>();
+    else if (energy)
+      eval_gradh<KERNEL, DIM, true, false>();
+    else if (visc_on_)
+      eval_gradh<KERNEL, DIM, false, true>();
+    else
+      eval_gradh<KERNEL, DIM, false, false>();
+  } else {
+    if (energy && visc_on_)
+      eval<KERNEL, DIM, true, true>();
+    else if (energy)
+      eval<KERNEL, DIM, true, false>();
+    else if (visc_on_)
+      eval<KERNEL, DIM, false, true>();
+    else
+      eval<KERNEL, DIM, false, false>();
+  }
 }
 
 template <class KERNEL> void PairSPHAstro::dispatch_dimension()
@@ -495,8 +758,14 @@ void PairSPHAstro::compute(int eflag, int vflag)
 int PairSPHAstro::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, int * /*pbc*/)
 {
   const double *rho = atom->dvector[state_.rho];
+  const double *h = atom->dvector[state_.h];
   double **vest = atom->darray[state_.vest];
   int m = 0;
+  if (comm_stage_ == Stage::SMOOTHING_LENGTH) {
+    for (int k = 0; k < n; k++) buf[m++] = h[list[k]];
+    return m;
+  }
+  const bool gradh = hmode_ == HMode::GRADH;
   for (int k = 0; k < n; k++) {
     const int j = list[k];
     buf[m++] = rho[j];
@@ -505,6 +774,10 @@ int PairSPHAstro::pack_forward_comm(int n, int *list, double *buf, int /*pbc_fla
     buf[m++] = vest[j][0];
     buf[m++] = vest[j][1];
     buf[m++] = vest[j][2];
+    if (gradh) {
+      buf[m++] = h[j];
+      buf[m++] = omega_[j];
+    }
   }
   return m;
 }
@@ -512,8 +785,14 @@ int PairSPHAstro::pack_forward_comm(int n, int *list, double *buf, int /*pbc_fla
 void PairSPHAstro::unpack_forward_comm(int n, int first, double *buf)
 {
   double *rho = atom->dvector[state_.rho];
+  double *h = atom->dvector[state_.h];
   double **vest = atom->darray[state_.vest];
   int m = 0;
+  if (comm_stage_ == Stage::SMOOTHING_LENGTH) {
+    for (int i = first; i < first + n; i++) h[i] = buf[m++];
+    return;
+  }
+  const bool gradh = hmode_ == HMode::GRADH;
   for (int i = first; i < first + n; i++) {
     rho[i] = buf[m++];
     pressure_[i] = buf[m++];
@@ -521,6 +800,10 @@ void PairSPHAstro::unpack_forward_comm(int n, int first, double *buf)
     vest[i][0] = buf[m++];
     vest[i][1] = buf[m++];
     vest[i][2] = buf[m++];
+    if (gradh) {
+      h[i] = buf[m++];
+      omega_[i] = buf[m++];
+    }
   }
 }
 
@@ -631,10 +914,11 @@ void *PairSPHAstro::extract_peratom(const char *name, int &ncol)
   if (strcmp(name, "soundspeed") == 0) return (void *) soundspeed_;
   if (strcmp(name, "divv") == 0) return (void *) divv_;
   if (strcmp(name, "nneigh") == 0) return (void *) nneigh_;
+  if (strcmp(name, "omega") == 0) return (void *) omega_;
   return nullptr;
 }
 
 double PairSPHAstro::memory_usage()
 {
-  return 5.0 * nmax_ * sizeof(double) + Pair::memory_usage();
+  return 6.0 * nmax_ * sizeof(double) + Pair::memory_usage();
 }

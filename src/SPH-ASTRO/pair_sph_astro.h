@@ -28,6 +28,7 @@ class PairSPHAstro : public Pair {
   void coeff(int, char **) override;
   void init_style() override;
   double init_one(int, int) override;
+  void init_list(int, class NeighList *) override;
   void write_restart(FILE *) override;
   void read_restart(FILE *) override;
   void write_restart_settings(FILE *) override;
@@ -51,6 +52,8 @@ class PairSPHAstro : public Pair {
   // the per-atom values of extract_peratom() belong to this step and these local atoms
   bigint computed_step() const { return computed_step_; }
   int computed_nlocal() const { return computed_nlocal_; }
+  // the largest h a particle of this type may take in this run (neighbour list cutoffs)
+  double h_cap(int type) const { return hcap_type_[type]; }
 
  protected:
   SPHAstro::KernelType kernel_ = SPHAstro::KernelType::CUBIC;
@@ -60,9 +63,17 @@ class PairSPHAstro : public Pair {
   double visc_alpha_ = 1.0, visc_beta_ = 2.0, visc_eps_ = 0.01;
 
   SPHAstro::StateIndex state_;
-  // largest h of each atom type at init: the cutoff of types (i,j) is
-  // kernel_radius * (hmax_i + hmax_j) / 2, the support of h_ij for the widest pair
-  double *hmax_type_ = nullptr;
+
+  // smoothing length: fixed, evolved by dh/dt (both with the mean h_ij = (h_i + h_j)/2 in
+  // every pair term), or iterated with rho (kernels W(h_i) and W(h_j), grad-h factor Omega)
+  enum class HMode { FIXED, DHDT, GRADH };
+  HMode hmode_ = HMode::FIXED;
+  class FixSPHAstroH *hfix_ = nullptr;
+  class NeighList *listfull_ = nullptr;    // GRADH density iteration: full list
+
+  // h cap of each atom type for this run: margin x its largest h at init. Cutoff of types
+  // (i,j): kernel_radius (cap_i + cap_j)/2 with h_ij, kernel_radius max(cap_i, cap_j) with GRADH
+  double *hcap_type_ = nullptr;
 
   // per-atom work arrays (owned + ghost), grown to atom->nmax
   int nmax_ = 0;
@@ -71,16 +82,19 @@ class PairSPHAstro : public Pair {
   double *vdotgradw_ = nullptr;     // sum_j m_j v_ij . grad_i W_ij  (= -rho_i div v_i)
   double *divv_ = nullptr;          // div v
   double *nneigh_ = nullptr;        // neighbours inside the kernel support
+  double *omega_ = nullptr;         // grad-h factor Omega (1 without GRADH)
 
   bigint computed_step_ = -1;
   int computed_nlocal_ = -1;
 
-  enum class Stage { DENSITY, FORCE };
+  enum class Stage { DENSITY, FORCE, SMOOTHING_LENGTH };
   Stage comm_stage_ = Stage::DENSITY;
 
   void allocate();
   void grow_work_arrays();
   template <class KERNEL, int DIM, bool ENERGY, bool VISC> void eval();
+  template <class KERNEL, int DIM, bool ENERGY, bool VISC> void eval_gradh();
+  template <class KERNEL, int DIM> void density_gradh();
   template <class KERNEL, int DIM> void dispatch_physics();
   template <class KERNEL> void dispatch_dimension();
   void equation_of_state();

@@ -8,6 +8,7 @@
 #include "compute_sph_astro_atom.h"
 #include "compute_sph_astro_global.h"
 #include "fix_sph_astro.h"
+#include "fix_sph_astro_h.h"
 #include "pair_sph_astro.h"
 #include "sph_astro_state_command.h"
 
@@ -21,6 +22,11 @@ static Pair *pair_sph_astro_creator(LAMMPS *lmp)
 static Fix *fix_sph_astro_creator(LAMMPS *lmp, int narg, char **arg)
 {
   return new FixSPHAstro(lmp, narg, arg);
+}
+
+static Fix *fix_sph_astro_h_creator(LAMMPS *lmp, int narg, char **arg)
+{
+  return new FixSPHAstroH(lmp, narg, arg);
 }
 
 static Compute *compute_sph_astro_atom_creator(LAMMPS *lmp, int narg, char **arg)
@@ -57,6 +63,11 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "sph/astro";
   plugin.info = "SPH-ASTRO kick-drift-kick integrator with adaptive timestep";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_sph_astro_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.name = "sph/astro/h";
+  plugin.info = "SPH-ASTRO variable smoothing length: dh/dt or h-rho iteration with grad-h";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_sph_astro_h_creator;
   (*register_plugin)(&plugin, lmp);
 
   plugin.style = "compute";

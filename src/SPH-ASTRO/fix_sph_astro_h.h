@@ -1,0 +1,61 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   SPH-ASTRO: astrophysical smoothed particle hydrodynamics for LAMMPS
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(sph/astro/h,FixSPHAstroH);
+// clang-format on
+#else
+
+#ifndef LMP_FIX_SPH_ASTRO_H_H
+#define LMP_FIX_SPH_ASTRO_H_H
+
+#include "fix.h"
+#include "sph_astro_state.h"
+
+namespace LAMMPS_NS {
+
+// Variable smoothing length for pair sph/astro (the pair reads the mode and settings):
+//   dhdt:    dh/dt = (h/d) div v                     (seed 000 eq. 1; seed 004 eqs. 50-53)
+//   iterate: h = hfact (m/rho)^(1/d) solved with rho(h) by Newton-Raphson with bisection,
+//            grad-h factor Omega in force and energy (Springel & Hernquist 2002; Price 2012)
+class FixSPHAstroH : public Fix {
+ public:
+  enum class Mode { DHDT, ITERATE };
+
+  FixSPHAstroH(class LAMMPS *, int, char **);
+  int setmask() override;
+  void init() override;
+  void initial_integrate(int) override;
+  double compute_vector(int) override;
+
+  Mode mode() const { return mode_; }
+  double hfact() const { return hfact_; }
+  double tolerance() const { return tolerance_; }
+  int max_iterations() const { return max_iterations_; }
+  double margin() const { return margin_; }
+
+  // h-iteration statistics of one density pass (summed over ranks by the fix when asked)
+  void record(double iterations_sum, int iterations_max, int nparticles, int failures, int capped);
+
+ protected:
+  Mode mode_ = Mode::ITERATE;
+  double hfact_ = 1.2;
+  double tolerance_ = 1e-4;
+  int max_iterations_ = 30;
+  double margin_ = 1.5;    // neighbour cutoffs allow h up to margin x the largest h at init
+
+  SPHAstro::StateIndex state_;
+  class PairSPHAstro *pair_ = nullptr;
+
+  // statistics of the latest density pass on this rank, and failures since the run began
+  double iter_sum_ = 0.0;
+  int iter_max_ = 0, nparticles_ = 0, capped_ = 0;
+  bigint failures_local_ = 0;    // summed over ranks when asked
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif
