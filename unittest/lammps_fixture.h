@@ -5,6 +5,7 @@
 #define SPH_ASTRO_TEST_LAMMPS_FIXTURE_H
 
 #include "atom.h"
+#include "domain.h"
 #include "exceptions.h"
 #include "input.h"
 #include "lammps.h"
@@ -112,7 +113,8 @@ global_vector(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp, const char *id,
   return std::vector<double>(vec, vec + n);
 }
 
-// per-atom double custom property or x/v/f component by atom ID (single rank)
+// per-atom double custom property or x (unwrapped)/v/f component by atom ID
+// (single rank)
 inline std::map<int, double>
 per_atom(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp, const std::string &what,
          int col = 0) {
@@ -120,7 +122,12 @@ per_atom(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp, const std::string &what,
   auto *atom = lmp->atom;
   for (int i = 0; i < atom->nlocal; i++) {
     double value;
-    if (what == "x")
+    if (what ==
+        "x") { // unwrapped: runs may re-neighbour (and wrap) at different steps
+      double unwrap[3];
+      lmp->domain->unmap(atom->x[i], atom->image[i], unwrap);
+      value = unwrap[col];
+    } else if (what == "xwrapped")
       value = atom->x[i][col];
     else if (what == "v")
       value = atom->v[i][col];

@@ -70,6 +70,8 @@ void ComputeSPHAstroAtom::compute_peratom()
       array_atom = array_;
     }
   }
+  if (!pair_)
+    error->all(FLERR, "compute sph/astro/atom {} has not been initialised: run first (run 0)", id);
   if (pair_->computed_step() != update->ntimestep || pair_->computed_nlocal() != nlocal)
     error->all(FLERR,
                "compute sph/astro/atom: pair sph/astro last evaluated step {} with {} local "

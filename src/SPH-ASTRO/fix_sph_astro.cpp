@@ -13,6 +13,8 @@
 
 #include "fix_sph_astro.h"
 
+#include "fix_sph_astro_h.h"
+
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
@@ -112,6 +114,8 @@ void FixSPHAstro::init()
   if (!find_state(lmp, state_))
     error->all(FLERR, "fix sph/astro: the per-particle state fix {} is missing", STATE_FIX_ID);
   evolve_u_ = pair_->eos().uses_energy();
+  auto hfixes = modify->get_fix_by_style("^sph/astro/h$");
+  hfix_ = hfixes.empty() ? nullptr : dynamic_cast<FixSPHAstroH *>(hfixes.front());
   if (modify->get_fix_by_style("^sph/astro$").size() > 1)
     error->all(FLERR,
                "fix sph/astro: only one instance is allowed (it sets the global timestep); use "
@@ -163,6 +167,7 @@ void FixSPHAstro::initial_integrate(int /*vflag*/)
     dt_pending_ = false;
     next_timestep();
   }
+  if (hfix_) hfix_->advance_h(update->dt);
   const double dt = update->dt;
   const double dtf = 0.5 * dt;
   double **x = atom->x;
@@ -398,6 +403,8 @@ double FixSPHAstro::reference_energy(const std::string &compute_id, double curre
 // (length of ID, ID characters, energy) records, all stored as doubles
 void FixSPHAstro::write_restart(FILE *fp)
 {
+  // restart files written during a run (restart command) need the hash of this step
+  state_hash_ = hash_velocity_energy();
   if (comm->me != 0) return;
   std::vector<double> list = {static_cast<double>(predicted_step_),
                               static_cast<double>(state_hash_ >> 32),

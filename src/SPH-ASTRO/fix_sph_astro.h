@@ -52,6 +52,7 @@ class FixSPHAstro : public Fix {
 
   SPHAstro::StateIndex state_;
   class PairSPHAstro *pair_ = nullptr;
+  class FixSPHAstroH *hfix_ = nullptr;    // variable h: advanced in the drift
   bool evolve_u_ = true;
 
   // restart state

@@ -5,7 +5,7 @@
 // fix ID group sph/astro/h dhdt [margin M]
 // fix ID group sph/astro/h iterate [hfact F] [tol T] [maxiter N] [margin M]
 //
-// In both modes h is first advanced with the drift, h <- h exp(dt div v / d), the
+// In both modes h is advanced with the drift of fix sph/astro, h <- h exp(dt div v / d), the
 // integral of dh/dt = (h/d) div v at fixed div v (seed 000 eq. 1). In dhdt mode that is the
 // evolution; in iterate mode it is the starting guess of the Newton-Raphson iteration that
 // pair sph/astro runs in its density pass. Smoothing lengths are capped at margin x the
@@ -76,24 +76,31 @@ FixSPHAstroH::FixSPHAstroH(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, a
 
 int FixSPHAstroH::setmask()
 {
-  return INITIAL_INTEGRATE;
+  return 0;    // fix sph/astro calls advance_h() in its drift
 }
 
 void FixSPHAstroH::init()
 {
   pair_ = dynamic_cast<PairSPHAstro *>(force->pair_match("^sph/astro$", 0, 0));
   if (!pair_) error->all(FLERR, "fix sph/astro/h requires pair_style sph/astro");
-  if (!SPHAstro::find_state(lmp, state_))
-    error->all(FLERR, "fix sph/astro/h requires fix sph/astro (the per-particle state)");
+  if (!SPHAstro::find_state(lmp, state_) || modify->get_fix_by_style("^sph/astro$").empty())
+    error->all(FLERR, "fix sph/astro/h requires fix sph/astro (integrator and per-particle state)");
   if (modify->get_fix_by_style("^sph/astro/h$").size() > 1)
     error->all(FLERR, "fix sph/astro/h: only one instance is allowed");
-  if (group->count(igroup) != atom->natoms && comm->me == 0)
-    error->warning(FLERR, "fix sph/astro/h: particles outside group {} keep their h",
-                   group->names[igroup]);
+  if (group->count(igroup) != atom->natoms) {
+    if (mode_ == Mode::ITERATE)
+      error->all(FLERR,
+                 "fix sph/astro/h iterate: group {} must hold all particles (the density "
+                 "iteration sets h for every SPH particle)",
+                 group->names[igroup]);
+    else if (comm->me == 0)
+      error->warning(FLERR, "fix sph/astro/h dhdt: particles outside group {} keep their h",
+                     group->names[igroup]);
+  }
   failures_local_ = 0;
 }
 
-void FixSPHAstroH::initial_integrate(int /*vflag*/)
+void FixSPHAstroH::advance_h(double dt)
 {
   int ncol;
   const auto *divv = static_cast<double *>(pair_->extract_peratom("divv", ncol));
@@ -101,7 +108,7 @@ void FixSPHAstroH::initial_integrate(int /*vflag*/)
   double *h = atom->dvector[state_.h];
   const int *mask = atom->mask;
   const int *type = atom->type;
-  const double dt_over_d = update->dt / domain->dimension;
+  const double dt_over_d = dt / domain->dimension;
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     h[i] *= std::exp(dt_over_d * divv[i]);

@@ -27,7 +27,9 @@ class FixSPHAstroH : public Fix {
   FixSPHAstroH(class LAMMPS *, int, char **);
   int setmask() override;
   void init() override;
-  void initial_integrate(int) override;
+  // h <- h exp(dt div v / d) for the group, capped; called by fix sph/astro in its drift once
+  // the step's dt is final
+  void advance_h(double dt);
   double compute_vector(int) override;
 
   Mode mode() const { return mode_; }

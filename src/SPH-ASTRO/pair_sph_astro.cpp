@@ -529,6 +529,7 @@ template <class KERNEL, int DIM> void PairSPHAstro::density_gradh()
 
     double hi = MIN(h[i], cap);
     double hlo = 0.0, hhi = INFINITY;    // f(h) = rho(h) - rho_target(h) rises with h
+    double h_evaluated = hi;             // rho, Omega and the count belong to this h
     double rhoi = 0.0, dsum = 0.0, ni = 0.0;
     bool converged = false, at_cap = false;
     int it = 0;
@@ -554,6 +555,7 @@ template <class KERNEL, int DIM> void PairSPHAstro::density_gradh()
       }
       rhoi = norm * w_sum;
       dsum = norm * hinv * dwh_sum;    // sum_j m_j dW/dh
+      h_evaluated = hi;
       const double rho_target = mi * hfact_d * inv_h_pow_dim<DIM>(hinv);
       const double f = rhoi - rho_target;
       const double fprime = dsum + DIM * rho_target * hinv;
@@ -578,6 +580,7 @@ template <class KERNEL, int DIM> void PairSPHAstro::density_gradh()
     }
     if (!converged) failures++;
     if (at_cap) capped++;
+    hi = h_evaluated;
     iter_sum += it;
     iter_max = MAX(iter_max, it);
     if (!(rhoi > 0.0) || !std::isfinite(rhoi) || !std::isfinite(hi))
