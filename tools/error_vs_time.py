@@ -1,0 +1,413 @@
+#!/usr/bin/python3
+"""Accuracy versus cost: run an SPH-ASTRO test scene at several resolutions and plot its L1
+errors against the wall time of each run.
+
+Usage (from the repository root; needs numpy and matplotlib, i.e. Debian's /usr/bin/python3)::
+
+    /usr/bin/python3 tools/error_vs_time.py sod [--resolutions 32,48,64,96,128] [--np 1]
+        [--outdir build/output/error_vs_time] [--variants 'hfact=1.2;hfact=1.5']
+
+For each variant and resolution the scene's LAMMPS input is run once (``-log``/``-screen
+none``, ``-var RESVAR RES``, ``-var OUTVAR DUMP`` plus the variant's ``-var`` settings); the wall
+time is measured around the ``lmp`` (or ``mpirun``) call, the particle count N and the number of
+steps are read from the log's ``Loop time of T on P procs for S steps with N atoms`` lines, and
+the scene's analysis function turns the final dump into L1 errors.  Output in OUTDIR:
+
+* ``SCENE_table.txt`` -- one block per variant with the columns
+  ``res N steps wall_s loop_s particle_steps_per_s L1_...`` (also printed);
+* ``SCENE_error_vs_time.png`` -- log-log L1 errors against wall seconds, one panel per plotted
+  quantity, one curve per variant, each marker labelled with N;
+* ``runs/...`` -- the logs and dumps of the single runs (``--reuse`` re-analyses them
+  instead of running again when the command is unchanged).
+
+The convergence order printed is the least-squares slope ``-d log L1 / d log RES``, i.e. with
+respect to the linear resolution RES (the scene's resolution variable, e.g. nx for Sod).  It is
+also given with respect to N (``L1 ~ N^-q``): for 3D scenes ``N ~ RES^3`` and ``q = p/3``, i.e.
+``p`` is the order against ``N^(1/3)``; the quasi-1D Sod tube keeps its cross-section fixed in
+lattice cells, so there ``N ~ nx`` and ``q = p``.
+
+Further scenes are added as entries of :data:`SCENES` (name -> :class:`Scene`: input file,
+resolution variable, dump variable, default resolutions, analysis function, error columns).
+
+Variants: ``--variants`` takes ``;``-separated variants, each a ``,``-separated list of
+``name=value`` LAMMPS variable settings, e.g. ``'hfact=1.2;hfact=1.5,kernel=m6'``; every variant
+is run at every resolution and drawn as its own curve.  ``--var name=value`` (repeatable) applies
+to all runs.
+"""
+
+import argparse
+import dataclasses
+import hashlib
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+from typing import Callable, Dict, Sequence, Tuple
+
+import numpy as np
+
+ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir))
+sys.path.insert(0, os.path.join(ROOT, "tools"))
+
+from sphastro.dump import read_last_frame  # noqa: E402
+from sphastro.sod import sod_errors  # noqa: E402
+
+
+# --------------------------------------------------------------------------------------------
+# scenes
+
+
+@dataclasses.dataclass
+class Scene:
+    """A test scene with a known solution.
+
+    input : LAMMPS input, relative to the repository root.
+    res_var : name of the LAMMPS variable setting the (linear) resolution.
+    out_var : name of the LAMMPS variable giving the path of the final dump.
+    default_res : resolutions run when --resolutions is not given.
+    analyse : ``f(dump_path, run) -> {error key: value}``; ``run`` is the :class:`Run`
+        (resolution, variables, log figures) for scenes that need them.
+    errors : ``(key, column label)`` of the errors, in table order.
+    plot : keys of ``errors`` drawn against wall time (one panel each).
+    fit : key whose convergence order is fitted.
+    notes : one line printed under the table.
+    """
+    input: str
+    res_var: str
+    out_var: str
+    default_res: Sequence[int]
+    analyse: Callable
+    errors: Sequence[Tuple[str, str]]
+    plot: Sequence[str]
+    fit: str
+    notes: str = ""
+
+
+def analyse_sod(dump_path, run):
+    """L1 errors of the periodic Sod tube (examples/sod/in.sod) against the exact solution."""
+    frame = read_last_frame(dump_path)
+    gamma = float(run.vars.get("gamma", 5.0 / 3.0))
+    t = frame.time if frame.time is not None else float(run.vars.get("tend", 0.2))
+    err = sod_errors(frame, gamma, t, left=(1.0, 0.0, 1.0), right=(0.125, 0.0, 0.1), x0=0.0,
+                     xrange=(-0.5, 0.5), x_periodic=tuple(frame.box[0]))
+    return {"rho": err["rho"], "vx": err["vx"], "p": err["p"], "u": err["u"],
+            "n_measured": err["n"]}
+
+
+SCENES: Dict[str, Scene] = {
+    "sod": Scene(
+        input="examples/sod/in.sod", res_var="nx", out_var="out",
+        default_res=(32, 48, 64, 96, 128), analyse=analyse_sod,
+        errors=(("rho", "L1_rho"), ("vx", "L1_vx"), ("p", "L1_P"), ("u", "L1_u")),
+        plot=("rho", "vx", "p"), fit="rho",
+        notes="Sod: ny cells across y,z are fixed, so N ~ nx (quasi-1D); errors over |x| < 0.5"),
+    # Later, e.g.:
+    # "sedov": Scene(input="examples/sedov/in.sedov", res_var="n", out_var="out",
+    #                default_res=(16, 24, 32), analyse=analyse_sedov,
+    #                errors=(("rho", "L1_rho"), ("vr", "L1_vr"), ("p", "L1_P")),
+    #                plot=("rho", "vr", "p"), fit="rho"),
+    # "noh": ..., "toystar": ...
+}
+
+
+# --------------------------------------------------------------------------------------------
+# running
+
+
+@dataclasses.dataclass
+class Run:
+    scene: str
+    variant: str
+    res: int
+    vars: Dict[str, str]
+    workdir: str
+    wall_s: float = float("nan")
+    loop_s: float = float("nan")
+    steps: int = 0
+    natoms: int = 0
+    procs: int = 0
+    mem_mb: float = float("nan")
+    errors: Dict[str, float] = dataclasses.field(default_factory=dict)
+    reused: bool = False
+
+
+_LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", re.M)
+_MEM = re.compile(r"^Per MPI rank memory allocation \(min/avg/max\) = (\S+) \| (\S+) \| (\S+)",
+                  re.M)
+
+
+def parse_log(path):
+    """Return (loop seconds summed, steps summed, atoms of the last run, procs, max MB/rank)."""
+    with open(path, encoding="utf-8", errors="replace") as f:
+        text = f.read()
+    loops = _LOOP.findall(text)
+    if not loops:
+        raise RuntimeError(f"{path}: no 'Loop time' line (did the run fail?)")
+    mem = _MEM.findall(text)
+    return (sum(float(t) for t, _, _, _ in loops), sum(int(s) for _, _, s, _ in loops),
+            int(loops[-1][3]), int(loops[-1][1]),
+            max(float(m[2]) for m in mem) if mem else float("nan"))
+
+
+def provenance(log_path):
+    """'git <commit>[ +local changes], plugin <path> (<mtime>)' for a table header."""
+    parts = []
+    try:
+        head = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], check=True,
+                              capture_output=True, text=True).stdout.strip()
+        dirty = subprocess.run(["git", "-C", ROOT, "status", "--porcelain", "--", "src",
+                                "cmake"], capture_output=True, text=True).stdout.strip()
+        parts.append(f"git {head}{' + local changes in src/cmake' if dirty else ''}")
+    except (OSError, subprocess.CalledProcessError):
+        pass
+    try:
+        with open(log_path, encoding="utf-8", errors="replace") as f:
+            m = re.search(r"^Loaded \d+ plugins? from (\S+)", f.read(4096), re.M)
+        if m:
+            so = os.path.join(m.group(1), "sphastroplugin.so")
+            when = (time.strftime("%Y-%m-%d %H:%M", time.localtime(os.path.getmtime(so)))
+                    if os.path.exists(so) else "?")
+            parts.append(f"plugin {m.group(1)} (built {when})")
+    except OSError:
+        pass
+    return ", ".join(parts) or "unknown"
+
+
+def lammps_environment():
+    """os.environ, plus build/env.sh's settings if ``lmp`` is not on PATH yet."""
+    env = dict(os.environ)
+    if shutil.which("lmp", path=env.get("PATH")):
+        return env
+    env_sh = os.path.join(ROOT, "build", "env.sh")
+    if os.path.exists(env_sh):
+        out = subprocess.run(["bash", "-c", f'source "{env_sh}" >/dev/null && env -0'],
+                             check=True, capture_output=True).stdout
+        env = dict(item.split("=", 1) for item in out.decode().split("\0") if "=" in item)
+    if not shutil.which("lmp", path=env.get("PATH")):
+        sys.exit("error: lmp not found; source build/env.sh (or run tools/setup.sh) first")
+    return env
+
+
+def lmp_command(nproc, lmp="lmp"):
+    return [lmp] if nproc == 1 else ["mpirun", "-np", str(nproc), lmp]
+
+
+def run_one(scene, run, nproc, env, lmp="lmp", reuse=False):
+    """Run (or with ``reuse``, re-analyse an earlier identical run of) one resolution.
+
+    LAMMPS reads its input while it runs, so the scene's input is copied into the run
+    directory first and run from there: edits to the input during a run cannot corrupt it,
+    and the copy records what was run.  (Inputs that ``include`` files by relative path
+    would need those files next to the copy.)
+    """
+    os.makedirs(run.workdir, exist_ok=True)
+    dump = os.path.join(run.workdir, "dump.final")
+    log = os.path.join(run.workdir, "log.lammps")
+    done = os.path.join(run.workdir, "command_wall.txt")
+    source = os.path.join(ROOT, scene.input)
+    with open(source, "rb") as f:
+        text = f.read()
+    digest = hashlib.sha256(text).hexdigest()
+    args = ["-log", log, "-screen", "none", "-var", scene.res_var, str(run.res),
+            "-var", scene.out_var, dump]
+    for name, value in run.vars.items():
+        args += ["-var", name, value]
+    # the command as the user would type it: the key under which --reuse finds a run
+    command = " ".join(lmp_command(nproc, lmp) + ["-in", source] + args)
+    previous = None
+    if reuse and os.path.exists(done) and os.path.exists(dump) and os.path.exists(log):
+        with open(done, encoding="utf-8") as f:
+            lines = f.read().splitlines()
+        if (len(lines) >= 2 and lines[0] == command
+                and (len(lines) < 3 or lines[2] == f"input sha256 {digest}")):
+            previous = float(lines[1])
+    if previous is not None:
+        run.wall_s = previous
+        run.reused = True
+    else:
+        if os.path.exists(done):
+            os.remove(done)
+        copy = os.path.join(run.workdir, os.path.basename(scene.input))
+        with open(copy, "wb") as f:
+            f.write(text)
+        cmd = lmp_command(nproc, lmp) + ["-in", copy] + args
+        start = time.perf_counter()
+        proc = subprocess.run(cmd, cwd=run.workdir, env=env, stdout=subprocess.PIPE,
+                              stderr=subprocess.STDOUT)
+        run.wall_s = time.perf_counter() - start
+        if proc.returncode != 0:
+            tail = proc.stdout.decode(errors="replace")[-2000:]
+            raise RuntimeError(f"{' '.join(cmd)} failed (exit {proc.returncode}); see {log}\n"
+                               f"{tail}")
+        with open(done, "w", encoding="utf-8") as f:
+            f.write(f"{command}\n{run.wall_s!r}\ninput sha256 {digest}\n")
+    run.loop_s, run.steps, run.natoms, run.procs, run.mem_mb = parse_log(log)
+    run.errors = scene.analyse(dump, run)
+    return run
+
+
+# --------------------------------------------------------------------------------------------
+# output
+
+
+def parse_variants(text):
+    """'a=1,b=2;a=3' -> [('a=1,b=2', {'a': '1', 'b': '2'}), ('a=3', {'a': '3'})]."""
+    if not text:
+        return [("default", {})]
+    variants = []
+    for item in text.split(";"):
+        item = item.strip()
+        if not item:
+            continue
+        settings = parse_settings(item.replace(",", " ").split())
+        variants.append((",".join(f"{k}={v}" for k, v in settings.items()), settings))
+    return variants or [("default", {})]
+
+
+def parse_settings(items):
+    settings = {}
+    for item in items:
+        if "=" not in item:
+            raise argparse.ArgumentTypeError(f"expected name=value, got {item!r}")
+        name, value = item.split("=", 1)
+        settings[name.strip()] = value.strip()
+    return settings
+
+
+def fit_slope(x, y):
+    """Least-squares slope of log y against log x (nan with fewer than two points)."""
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    ok = (x > 0) & (y > 0) & np.isfinite(x) & np.isfinite(y)
+    if np.count_nonzero(ok) < 2:
+        return float("nan")
+    return float(np.polyfit(np.log(x[ok]), np.log(y[ok]), 1)[0])
+
+
+def format_table(scene_name, scene, runs_by_variant, nproc):
+    cols = ["res", "N", "steps", "wall_s", "loop_s", "particle_steps_per_s"]
+    cols += [label for _, label in scene.errors]
+    widths = [max(len(c), 11) for c in cols]
+    lines = [f"# {scene_name}: {scene.input}, resolution variable {scene.res_var}, "
+             f"{nproc} MPI rank(s)",
+             "# wall_s: wall time around the lmp call (start-up, set-up, run, dump); loop_s: "
+             "LAMMPS' Loop time; particle_steps_per_s = N steps / wall_s"]
+    if scene.notes:
+        lines.append(f"# {scene.notes}")
+    first = next(iter(runs_by_variant.values()))
+    if first:
+        lines.append(f"# {provenance(os.path.join(first[0].workdir, 'log.lammps'))}")
+    summary = []
+    for variant, runs in runs_by_variant.items():
+        lines.append(f"# variant: {variant}")
+        lines.append("  ".join(c.rjust(w) for c, w in zip(cols, widths)))
+        for r in runs:
+            vals = [str(r.res), str(r.natoms), str(r.steps), f"{r.wall_s:.3f}", f"{r.loop_s:.3f}",
+                    f"{r.natoms * r.steps / r.wall_s:.4g}"]
+            vals += [f"{r.errors[key]:.4e}" for key, _ in scene.errors]
+            lines.append("  ".join(v.rjust(w) for v, w in zip(vals, widths)))
+        res = [r.res for r in runs]
+        err = [r.errors[scene.fit] for r in runs]
+        p = -fit_slope(res, err)
+        s_n = fit_slope([r.natoms for r in runs], err)
+        k = fit_slope(res, [r.natoms for r in runs])
+        s_w = fit_slope([r.wall_s for r in runs], err)
+        label = dict(scene.errors)[scene.fit]
+        summary.append(f"# {variant}: {label} ~ {scene.res_var}^-p with p = {p:.2f} "
+                       f"(convergence order vs linear resolution); N ~ {scene.res_var}^{k:.2f}, "
+                       f"{label} ~ N^({s_n:.2f}); {label} ~ wall_s^({s_w:.2f})")
+        if len(runs) >= 3:
+            p_hi = -fit_slope(res[-2:], err[-2:])
+            summary.append(f"#   order from the two finest resolutions: p = {p_hi:.2f}")
+    return "\n".join(lines + summary) + "\n"
+
+
+def plot(scene_name, scene, runs_by_variant, png_path, nproc):
+    from matplotlib.figure import Figure     # no pyplot: no GUI backend, no global state
+
+    labels = {"rho": r"$L_1(\rho)$", "vx": r"$L_1(v_x)$", "p": r"$L_1(P)$", "u": r"$L_1(u)$"}
+    fig = Figure(figsize=(4.2 * len(scene.plot), 4.2))
+    axes = fig.subplots(1, len(scene.plot), squeeze=False)[0]
+    markers = "osD^v<>px"
+    for ax, key in zip(axes, scene.plot):
+        for k, (variant, runs) in enumerate(runs_by_variant.items()):
+            t = [r.wall_s for r in runs]
+            e = [r.errors[key] for r in runs]
+            ax.loglog(t, e, "-" + markers[k % len(markers)], label=variant, ms=5)
+            for r in runs:
+                ax.annotate(f"N={r.natoms}", (r.wall_s, r.errors[key]), fontsize=7,
+                            textcoords="offset points", xytext=(4, 3))
+        ax.set_xlabel(f"wall time [s] ({nproc} MPI rank{'s' if nproc > 1 else ''})")
+        ax.set_ylabel(labels.get(key, f"L1({key})"))
+        ax.grid(True, which="both", alpha=0.3)
+    if len(runs_by_variant) > 1 or next(iter(runs_by_variant)) != "default":
+        axes[0].legend(fontsize=8)
+    fig.suptitle(f"{scene_name}: L1 error vs wall time")
+    fig.tight_layout()
+    fig.savefig(png_path, dpi=130)
+    return png_path
+
+
+# --------------------------------------------------------------------------------------------
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("scene", choices=sorted(SCENES), help="test scene")
+    parser.add_argument("--resolutions", default=None,
+                        help="comma-separated values of the scene's resolution variable "
+                             "(Sod: nx; default 32,48,64,96,128)")
+    parser.add_argument("--np", type=int, default=1, help="MPI ranks per run (default 1)")
+    parser.add_argument("--outdir", default=os.path.join(ROOT, "build", "output",
+                                                         "error_vs_time"))
+    parser.add_argument("--variants", default=None,
+                        help="';'-separated variants of ','-separated name=value LAMMPS "
+                             "variables, one curve each, e.g. 'hfact=1.2;hfact=1.5'")
+    parser.add_argument("--var", action="append", default=[], metavar="NAME=VALUE",
+                        help="LAMMPS variable for every run (repeatable)")
+    parser.add_argument("--lmp", default="lmp", help="LAMMPS executable (default lmp)")
+    parser.add_argument("--reuse", action="store_true",
+                        help="do not rerun a resolution/variant whose identical earlier run "
+                             "(same command) left its log, dump and wall time in OUTDIR/runs; "
+                             "re-analyse it (e.g. to add a variant to an existing plot)")
+    args = parser.parse_args(argv)
+
+    scene = SCENES[args.scene]
+    res_list = ([int(float(v)) for v in args.resolutions.split(",") if v.strip()]
+                if args.resolutions else list(scene.default_res))
+    common = parse_settings(args.var)
+    variants = parse_variants(args.variants)
+    env = lammps_environment()
+    outdir = os.path.abspath(args.outdir)
+    os.makedirs(outdir, exist_ok=True)
+
+    runs_by_variant = {}
+    for variant, settings in variants:
+        settings = {**common, **settings}
+        tag = re.sub(r"[^A-Za-z0-9_.=-]+", "_", variant)
+        runs_by_variant[variant] = []
+        for res in res_list:
+            workdir = os.path.join(outdir, "runs", f"{args.scene}_{tag}_{scene.res_var}{res}")
+            run = Run(args.scene, variant, res, settings, workdir)
+            print(f"[{args.scene} {variant} {scene.res_var}={res}] running ...", end=" ",
+                  flush=True)
+            run_one(scene, run, args.np, env, args.lmp, args.reuse)
+            print(f"{'(reused) ' if run.reused else ''}N={run.natoms} steps={run.steps} wall={run.wall_s:.2f}s "
+                  f"L1({scene.fit})={run.errors[scene.fit]:.3e}", flush=True)
+            runs_by_variant[variant].append(run)
+
+    table = format_table(args.scene, scene, runs_by_variant, args.np)
+    table_path = os.path.join(outdir, f"{args.scene}_table.txt")
+    with open(table_path, "w", encoding="utf-8") as f:
+        f.write(table)
+    png_path = plot(args.scene, scene, runs_by_variant,
+                    os.path.join(outdir, f"{args.scene}_error_vs_time.png"), args.np)
+    print()
+    print(table, end="")
+    print(f"table: {table_path}\nplot: {png_path}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
