@@ -187,6 +187,118 @@ TEST(FixSPHAstroH, DhdtFollowsTheDivergence) {
   EXPECT_NEAR(rate, 0.1, 0.003);
 }
 
+// ------------------------------------------------- viscosity switch,
+// conductivity
+
+TEST(FixSPHAstroSwitch, AlphaDecaysInGasAtRest) {
+  auto lmp = open_lammps();
+  gas(lmp, "box", 3, PAIR, "sph/astro dt fixed", 1.0, 0.0);
+  commands(lmp, {"velocity all set 0 0 0", "set group all d_u 1.5",
+                 "fix av all sph/astro/switch morris-monaghan 0.1 1.0 0.2",
+                 "timestep 0.01", "compute sph all sph/astro/atom alpha cs h",
+                 "thermo 50", "run 50"});
+  // alpha = 0.1 + 0.9 exp(-t l c / h) with c and h fixed in the uniform gas at
+  // rest
+  const double c = std::sqrt(5.0 / 3.0 * 2.0 / 3.0 * 1.5),
+               h = 1.2 * std::cbrt(0.25);
+  const double expected = 0.1 + 0.9 * std::exp(-0.5 * 0.2 * c / h);
+  auto *array = static_cast<double **>(
+      lammps_extract_compute(lmp.get(), "sph", LMP_STYLE_ATOM, LMP_TYPE_ARRAY));
+  ASSERT_NE(array, nullptr);
+  for (int i = 0; i < lmp->atom->nlocal; i++)
+    EXPECT_NEAR(array[i][0], expected, 1e-9);
+  auto *fix = lmp->modify->get_fix_by_id("av");
+  EXPECT_NEAR(fix->compute_vector(0), expected, 1e-9);
+}
+
+TEST(FixSPHAstroSwitch, AlphaRisesUnderCompressionAndConservesMomentum) {
+  auto lmp = open_lammps();
+  gas(lmp, "ball", 6, PAIR, "sph/astro courant 0.3", 0.05, 0.0);
+  commands(lmp, {"fix av all sph/astro/switch morris-monaghan 0.1 1.5 0.2",
+                 "set group all d_alpha 0.1", "variable vx atom -0.5*x",
+                 "variable vy atom -0.5*y", "variable vz atom -0.5*z",
+                 "velocity all set v_vx v_vy v_vz",
+                 "compute sph all sph/astro/atom alpha", "run 40"});
+  auto *fix = lmp->modify->get_fix_by_id("av");
+  // converging flow: div v = -1.5, the source drives alpha towards alpha_max
+  EXPECT_GT(fix->compute_vector(0), 0.8);
+  EXPECT_LE(fix->compute_vector(1), 1.5);
+  const auto end = global_vector(lmp, "sum", 12);
+  for (int k : {PX, PY, PZ})
+    EXPECT_LT(std::fabs(end[k]), 1e-12) << k;
+  EXPECT_LT(std::fabs(end[DEREL]), 1e-2);
+}
+
+static double energy_error_conductivity(double dt) {
+  auto lmp = open_lammps();
+  gas(lmp, "ball", 6,
+      "sph/astro kernel m4 eos ideal $(5.0/3.0) viscosity classic 1.0 2.0 "
+      "conductivity 1.0",
+      "sph/astro dt fixed");
+  const int nsteps = static_cast<int>(std::lround(0.4 / dt));
+  commands(lmp, {"timestep " + std::to_string(dt),
+                 "thermo " + std::to_string(nsteps),
+                 "run " + std::to_string(nsteps)});
+  const auto end = global_vector(lmp, "sum", 12);
+  return std::fabs(end[DEREL]);
+}
+
+TEST(PairSPHAstro, ConductivityConservesEnergy) {
+  const double e1 = energy_error_conductivity(0.02),
+               e2 = energy_error_conductivity(0.01);
+  printf("energy error with conductivity: dt 0.02 %.3e, 0.01 %.3e\n", e1, e2);
+  EXPECT_NEAR(e1 / e2, 4.0, 1.0);
+}
+
+// pressure spread across a contact discontinuity in pressure balance (rho 1 |
+// 0.25, u 1 | 4) after some time, with and without artificial conductivity
+static double contact_pressure_spread(double alpha_u) {
+  auto lmp = open_lammps();
+  commands(lmp, {"units lj",
+                 "atom_style atomic",
+                 "atom_modify map array",
+                 "boundary p p p",
+                 "region box block 0 16 0 2 0 2 units box",
+                 "create_box 2 box",
+                 "region left block 0 8 EDGE EDGE EDGE EDGE units box",
+                 "region right block 8 16 EDGE EDGE EDGE EDGE units box",
+                 "lattice fcc 4.0 origin 0.25 0.25 0.25",
+                 "create_atoms 1 region left",
+                 "lattice fcc 1.0 origin 0.25 0.25 0.25",
+                 "create_atoms 2 region right",
+                 "mass * 0.25",
+                 "pair_style sph/astro eos ideal $(5.0/3.0) viscosity classic "
+                 "1 2 conductivity " +
+                     num(alpha_u),
+                 "pair_coeff * *",
+                 "fix gas all sph/astro courant 0.3 tend 2.0",
+                 "fix hvar all sph/astro/h iterate margin 1.5",
+                 "set type 1 d_h 0.76",
+                 "set type 2 d_h 1.51",
+                 "set type 1 d_u 1.0",
+                 "set type 2 d_u 4.0",
+                 "neighbor 0.3 multi",
+                 "compute sph all sph/astro/atom pressure",
+                 "compute pmax all reduce max c_sph",
+                 "compute pmin all reduce min c_sph",
+                 "thermo_style custom step c_pmax c_pmin",
+                 "run 10000"});
+  const double pmax = *static_cast<double *>(lammps_extract_compute(
+      lmp.get(), "pmax", LMP_STYLE_GLOBAL, LMP_TYPE_SCALAR));
+  const double pmin = *static_cast<double *>(lammps_extract_compute(
+      lmp.get(), "pmin", LMP_STYLE_GLOBAL, LMP_TYPE_SCALAR));
+  return (pmax - pmin) / (2.0 / 3.0);
+}
+
+TEST(PairSPHAstro, ConductivitySmoothsTheContactPressureBlip) {
+  const double without = contact_pressure_spread(0.0),
+               with = contact_pressure_spread(1.0);
+  printf("contact pressure spread (P 2/3 nominal): %.3e without, %.3e with "
+         "conductivity\n",
+         without, with);
+  EXPECT_LT(with, 0.5 * without);
+}
+
 TEST(FixSPHAstro, AdaptiveTimestepFollowsCourantCriterion) {
   auto lmp = open_lammps();
   gas(lmp, "box", 3, PAIR, "sph/astro courant 0.2 force 0.3");

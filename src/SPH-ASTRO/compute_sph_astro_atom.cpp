@@ -22,17 +22,18 @@ using namespace LAMMPS_NS;
 ComputeSPHAstroAtom::ComputeSPHAstroAtom(LAMMPS *lmp, int narg, char **arg) :
     Compute(lmp, narg, arg)
 {
-  static const char *names[] = {"rho", "h", "pressure", "cs", "u", "nneigh", "divv", "dudt"};
+  static const char *names[] = {"rho",    "h",    "pressure", "cs",    "u",
+                                "nneigh", "divv", "dudt",     "omega", "alpha"};
   const int nnames = sizeof(names) / sizeof(names[0]);
-  if (narg == 3)
-    for (int k = 0; k < nnames; k++) fields_.push_back(static_cast<Field>(k));
+  if (narg == 3)    // the state and hydro fields; omega and alpha when named
+    for (int k = 0; k <= DUDT; k++) fields_.push_back(static_cast<Field>(k));
   for (int iarg = 3; iarg < narg; iarg++) {
     int k = 0;
     while (k < nnames && strcmp(arg[iarg], names[k]) != 0) k++;
     if (k == nnames)
       error->all(FLERR,
                  "compute sph/astro/atom: unknown field '{}'; allowed: rho, h, pressure, cs, u, "
-                 "nneigh, divv, dudt",
+                 "nneigh, divv, dudt, omega, alpha",
                  arg[iarg]);
     fields_.push_back(static_cast<Field>(k));
   }
@@ -78,20 +79,29 @@ void ComputeSPHAstroAtom::compute_peratom()
                "atoms, not the current step {} with {}; use it during or right after a run",
                pair_->computed_step(), pair_->computed_nlocal(), update->ntimestep, nlocal);
   int ncol;
-  const double *columns[8] = {atom->dvector[state_.rho],
-                              atom->dvector[state_.h],
-                              static_cast<double *>(pair_->extract_peratom("pressure", ncol)),
-                              static_cast<double *>(pair_->extract_peratom("soundspeed", ncol)),
-                              atom->dvector[state_.u],
-                              static_cast<double *>(pair_->extract_peratom("nneigh", ncol)),
-                              static_cast<double *>(pair_->extract_peratom("divv", ncol)),
-                              atom->dvector[state_.dudt]};
+  // omega: 1 unless variable h iterates; alpha: the switch's or the pair's constant
+  const double *omega = static_cast<double *>(pair_->extract_peratom("omega", ncol));
+  const bool gradh_omega = pair_->extract_peratom("omega_valid", ncol) != nullptr;
+  const double *alpha = pair_->alpha_per_atom();
+  const double *columns[10] = {atom->dvector[state_.rho],
+                               atom->dvector[state_.h],
+                               static_cast<double *>(pair_->extract_peratom("pressure", ncol)),
+                               static_cast<double *>(pair_->extract_peratom("soundspeed", ncol)),
+                               atom->dvector[state_.u],
+                               static_cast<double *>(pair_->extract_peratom("nneigh", ncol)),
+                               static_cast<double *>(pair_->extract_peratom("divv", ncol)),
+                               atom->dvector[state_.dudt],
+                               gradh_omega ? omega : nullptr,
+                               alpha};
   const int *mask = atom->mask;
   const int nf = static_cast<int>(fields_.size());
   for (int k = 0; k < nf; k++) {
     const double *src = columns[fields_[k]];
+    double fill = 0.0;    // value when there is no per-atom source
+    if (fields_[k] == OMEGA) fill = 1.0;
+    if (fields_[k] == ALPHA) fill = pair_->alpha();
     for (int i = 0; i < nlocal; i++) {
-      const double value = (src && (mask[i] & groupbit)) ? src[i] : 0.0;
+      const double value = !(mask[i] & groupbit) ? 0.0 : (src ? src[i] : fill);
       if (size_peratom_cols == 0)
         vector_[i] = value;
       else

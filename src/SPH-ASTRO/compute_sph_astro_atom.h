@@ -27,7 +27,7 @@ class ComputeSPHAstroAtom : public Compute {
   double memory_usage() override;
 
  private:
-  enum Field { RHO, H, PRESSURE, SOUNDSPEED, U, NNEIGH, DIVV, DUDT };
+  enum Field { RHO, H, PRESSURE, SOUNDSPEED, U, NNEIGH, DIVV, DUDT, OMEGA, ALPHA };
   std::vector<Field> fields_;
   int nmax_ = 0;
   double *vector_ = nullptr;

@@ -312,6 +312,8 @@ void FixSPHAstro::next_timestep(bool from_end_of_step)
     const double *mass = atom->mass;
     const int nlocal = atom->nlocal;
     const double alpha = pair_->alpha(), beta = pair_->beta();
+    const double *alpha_atom = pair_->alpha_per_atom();    // viscosity switch, or null
+    const double beta_factor = pair_->beta_factor();
 
     struct {
       double value;
@@ -321,7 +323,9 @@ void FixSPHAstro::next_timestep(bool from_end_of_step)
     for (int i = 0; i < nlocal; i++) {
       if (!(mask[i] & groupbit)) continue;
       const double hdiv = h[i] * std::fabs(divv[i]);
-      const double vsig = cs[i] + hdiv + 1.2 * (alpha * cs[i] + beta * hdiv);
+      const double ai = alpha_atom ? alpha_atom[i] : alpha;
+      const double bi = alpha_atom ? beta_factor * ai : beta;
+      const double vsig = cs[i] + hdiv + 1.2 * (ai * cs[i] + bi * hdiv);
       if (vsig > 0.0) {
         const double dtcv = courant_ * h[i] / vsig;
         if (dtcv < mine[0].value) {

@@ -20,6 +20,8 @@
 #include "pair_sph_astro.h"
 
 #include "fix_sph_astro_h.h"
+#include "fix_sph_astro_switch.h"
+#include "sph_astro_pair_terms.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -47,7 +49,7 @@ PairSPHAstro::PairSPHAstro(LAMMPS *lmp) : Pair(lmp)
   restartinfo = 1;
   one_coeff = 1;
   manybody_flag = 1;    // forces depend on densities of both partners
-  comm_forward = 8;     // rho, P, c_s, vest[3], h, Omega
+  comm_forward = 10;    // rho, P, c_s, vest[3]; h, Omega (grad-h); alpha (switch); u (cond.)
   comm_reverse = 2;     // density pass: rho, nneigh; force pass: dudt, sum v.gradW
 }
 
@@ -110,6 +112,7 @@ void PairSPHAstro::settings(int narg, char **arg)
   visc_alpha_ = 1.0;
   visc_beta_ = 2.0;
   visc_eps_ = 0.01;
+  cond_alpha_ = 0.0;
   int iarg = 0;
   while (iarg < narg) {
     const std::string key = arg[iarg];
@@ -184,6 +187,14 @@ void PairSPHAstro::settings(int narg, char **arg)
                    "pair_style sph/astro: unknown viscosity '{}'; allowed: classic ALPHA BETA, "
                    "none",
                    form);
+    } else if (key == "conductivity") {
+      if (iarg + 2 > narg)
+        utils::missing_cmd_args(FLERR, "pair_style sph/astro conductivity", error);
+      cond_alpha_ = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (cond_alpha_ < 0.0)
+        error->all(FLERR, "pair_style sph/astro: conductivity alpha_u = {} must be >= 0",
+                   arg[iarg + 1]);
+      iarg += 2;
     } else if (key == "epsilon") {
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_style sph/astro epsilon", error);
       visc_eps_ = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
@@ -193,7 +204,7 @@ void PairSPHAstro::settings(int narg, char **arg)
     } else
       error->all(FLERR,
                  "pair_style sph/astro: unknown keyword '{}'; allowed: kernel, eos, viscosity, "
-                 "epsilon",
+                 "conductivity, epsilon",
                  key);
   }
   kernel_radius_ = SPHAstro::kernel_radius(kernel_);
@@ -245,6 +256,13 @@ void PairSPHAstro::init_style()
   else
     hmode_ = hfix_->mode() == FixSPHAstroH::Mode::ITERATE ? HMode::GRADH : HMode::DHDT;
   const double margin = hfix_ ? hfix_->margin() : 1.0;
+
+  auto switches = modify->get_fix_by_style("^sph/astro/switch$");
+  switch_ = switches.empty() ? nullptr : dynamic_cast<FixSPHAstroSwitch *>(switches.front());
+  if (switch_ && !(visc_on_ && visc_alpha_ > 0.0))
+    error->all(FLERR,
+               "fix sph/astro/switch needs pair_style sph/astro viscosity classic with alpha > 0 "
+               "(beta scales with the particle's alpha as beta/alpha)");
 
   // every particle needs a positive mass and smoothing length; the list cutoffs are set
   // by the largest h of each type
@@ -338,7 +356,7 @@ void PairSPHAstro::equation_of_state()
   }
 }
 
-template <class KERNEL, int DIM, bool ENERGY, bool VISC> void PairSPHAstro::eval()
+template <class KERNEL, int DIM, bool ENERGY, bool VISC, bool COND> void PairSPHAstro::eval()
 {
   using K = Kernel<KERNEL, DIM>;
   double **x = atom->x;
@@ -413,6 +431,10 @@ template <class KERNEL, int DIM, bool ENERGY, bool VISC> void PairSPHAstro::eval
   // pass 2: accelerations, du/dt, div v
 
   const double alpha = visc_alpha_, beta = visc_beta_, eps = visc_eps_;
+  const double *alpha_atom = alpha_atom_;    // per-atom alpha of a switch, or null
+  const double beta_factor = alpha > 0.0 ? beta / alpha : 0.0;
+  const double alpha_u = cond_alpha_;
+  const double *uest = atom->dvector[state_.uest];
   for (int i = 0; i < nzero; i++) {
     vdotgradw_[i] = 0.0;
     if (ENERGY) dudt[i] = 0.0;
@@ -445,8 +467,10 @@ template <class KERNEL, int DIM, bool ENERGY, bool VISC> void PairSPHAstro::eval
       const double vdotr = dvx * dx + dvy * dy + dvz * dz;
       double visc = 0.0;
       if (VISC && vdotr < 0.0) {
-        const double mu = hij * vdotr / (r2 + eps * hij * hij);
-        visc = (-alpha * 0.5 * (ci + soundspeed_[j]) * mu + beta * mu * mu) / (0.5 * (rhoi + rhoj));
+        const double a = alpha_atom ? 0.5 * (alpha_atom[i] + alpha_atom[j]) : alpha;
+        const double b = alpha_atom ? beta_factor * a : beta;
+        visc = viscosity_classic(vdotr, r2, hij, a, b, eps, 0.5 * (ci + soundspeed_[j]),
+                                 0.5 * (rhoi + rhoj));
       }
       const double fpair = -mi * mj * (prhoi + pressure_[j] / (rhoj * rhoj) + visc) * dwdr_r;
       const double vgw = vdotr * dwdr_r;
@@ -455,12 +479,20 @@ template <class KERNEL, int DIM, bool ENERGY, bool VISC> void PairSPHAstro::eval
       fzi += dz * fpair;
       vgwi += mj * vgw;
       if (ENERGY && VISC) heati += 0.5 * mj * visc * vgw;
+      double cond = 0.0;    // conductivity flux times dW/dr
+      if (COND) {
+        cond = conductivity_flux(alpha_u, uest[i], uest[j], pressure_[i], pressure_[j],
+                                 0.5 * (rhoi + rhoj)) *
+            dwdr_r * r;
+        heati += mj * cond;
+      }
       if (newton_pair || j < nlocal) {
         f[j][0] -= dx * fpair;
         f[j][1] -= dy * fpair;
         f[j][2] -= dz * fpair;
         vdotgradw_[j] += mi * vgw;
         if (ENERGY && VISC) dudt[j] += 0.5 * mi * visc * vgw;
+        if (COND) dudt[j] -= mi * cond;
       }
       if (evflag) ev_tally(i, j, nlocal, newton_pair, 0.0, 0.0, fpair, dx, dy, dz);
     }
@@ -595,7 +627,7 @@ template <class KERNEL, int DIM> void PairSPHAstro::density_gradh()
   hfix_->record(iter_sum, iter_max, inum, failures, capped);
 }
 
-template <class KERNEL, int DIM, bool ENERGY, bool VISC> void PairSPHAstro::eval_gradh()
+template <class KERNEL, int DIM, bool ENERGY, bool VISC, bool COND> void PairSPHAstro::eval_gradh()
 {
   using K = Kernel<KERNEL, DIM>;
   double **x = atom->x;
@@ -624,6 +656,10 @@ template <class KERNEL, int DIM, bool ENERGY, bool VISC> void PairSPHAstro::eval
   const double sigma = K::sigma();
   const double R2 = K::radius * K::radius;
   const double alpha = visc_alpha_, beta = visc_beta_, eps = visc_eps_;
+  const double *alpha_atom = alpha_atom_;    // per-atom alpha of a switch, or null
+  const double beta_factor = alpha > 0.0 ? beta / alpha : 0.0;
+  const double alpha_u = cond_alpha_;
+  const double *uest = atom->dvector[state_.uest];
 
   for (int i = 0; i < nzero; i++) {
     vdotgradw_[i] = 0.0;
@@ -666,9 +702,10 @@ template <class KERNEL, int DIM, bool ENERGY, bool VISC> void PairSPHAstro::eval
       const double vdotr = dvx * dx + dvy * dy + dvz * dz;
       double visc = 0.0;
       if (VISC && vdotr < 0.0) {
-        const double hij = 0.5 * (hi + hj);
-        const double mu = hij * vdotr / (r2 + eps * hij * hij);
-        visc = (-alpha * 0.5 * (ci + soundspeed_[j]) * mu + beta * mu * mu) / (0.5 * (rhoi + rhoj));
+        const double a = alpha_atom ? 0.5 * (alpha_atom[i] + alpha_atom[j]) : alpha;
+        const double b = alpha_atom ? beta_factor * a : beta;
+        visc = viscosity_classic(vdotr, r2, 0.5 * (hi + hj), a, b, eps, 0.5 * (ci + soundspeed_[j]),
+                                 0.5 * (rhoi + rhoj));
       }
       const double fpair = -mi * mj * (prhoi * dwi + prhoj * dwj + visc * dwbar);
       fxi += dx * fpair;
@@ -676,12 +713,20 @@ template <class KERNEL, int DIM, bool ENERGY, bool VISC> void PairSPHAstro::eval
       fzi += dz * fpair;
       vgwi += mj * vdotr * dwi;
       if (ENERGY && VISC) heati += 0.5 * mj * visc * vdotr * dwbar;
+      double cond = 0.0;    // conductivity flux times the mean dW/dr
+      if (COND) {
+        cond = conductivity_flux(alpha_u, uest[i], uest[j], pressure_[i], pressure_[j],
+                                 0.5 * (rhoi + rhoj)) *
+            dwbar * r;
+        heati += mj * cond;
+      }
       if (newton_pair || j < nlocal) {
         f[j][0] -= dx * fpair;
         f[j][1] -= dy * fpair;
         f[j][2] -= dz * fpair;
         vdotgradw_[j] += mi * vdotr * dwj;
         if (ENERGY && VISC) dudt[j] += 0.5 * mi * visc * vdotr * dwbar;
+        if (COND) dudt[j] -= mi * cond;
       }
       if (evflag) ev_tally(i, j, nlocal, newton_pair, 0.0, 0.0, fpair, dx, dy, dz);
     }
@@ -703,26 +748,25 @@ template <class KERNEL, int DIM, bool ENERGY, bool VISC> void PairSPHAstro::eval
 
 template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
 {
+  // only the ideal gas evolves u, so only it has conductivity
   const bool energy = eos_.uses_energy();
-  if (hmode_ == HMode::GRADH) {
-    if (energy && visc_on_)
-      eval_gradh<KERNEL, DIM, true, true>();
-    else if (energy)
-      eval_gradh<KERNEL, DIM, true, false>();
-    else if (visc_on_)
-      eval_gradh<KERNEL, DIM, false, true>();
-    else
-      eval_gradh<KERNEL, DIM, false, false>();
-  } else {
-    if (energy && visc_on_)
-      eval<KERNEL, DIM, true, true>();
-    else if (energy)
-      eval<KERNEL, DIM, true, false>();
-    else if (visc_on_)
-      eval<KERNEL, DIM, false, true>();
-    else
-      eval<KERNEL, DIM, false, false>();
+  const bool cond = energy && cond_alpha_ > 0.0;
+  const bool gradh = hmode_ == HMode::GRADH;
+#define SPH_ASTRO_EVAL(E, V, C)           \
+  {                                       \
+    if (gradh)                            \
+      eval_gradh<KERNEL, DIM, E, V, C>(); \
+    else                                  \
+      eval<KERNEL, DIM, E, V, C>();       \
+    return;                               \
   }
+  if (energy && visc_on_ && cond) SPH_ASTRO_EVAL(true, true, true);
+  if (energy && visc_on_) SPH_ASTRO_EVAL(true, true, false);
+  if (energy && cond) SPH_ASTRO_EVAL(true, false, true);
+  if (energy) SPH_ASTRO_EVAL(true, false, false);
+  if (visc_on_) SPH_ASTRO_EVAL(false, true, false);
+  SPH_ASTRO_EVAL(false, false, false);
+#undef SPH_ASTRO_EVAL
 }
 
 template <class KERNEL> void PairSPHAstro::dispatch_dimension()
@@ -737,6 +781,7 @@ void PairSPHAstro::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
   grow_work_arrays();
+  alpha_atom_ = switch_ ? switch_->alpha() : nullptr;
   switch (kernel_) {
     case KernelType::CUBIC:
       dispatch_dimension<KernelCubic>();
@@ -769,6 +814,8 @@ int PairSPHAstro::pack_forward_comm(int n, int *list, double *buf, int /*pbc_fla
     return m;
   }
   const bool gradh = hmode_ == HMode::GRADH;
+  const bool cond = cond_alpha_ > 0.0 && eos_.uses_energy();
+  const double *uest = atom->dvector[state_.uest];
   for (int k = 0; k < n; k++) {
     const int j = list[k];
     buf[m++] = rho[j];
@@ -781,6 +828,8 @@ int PairSPHAstro::pack_forward_comm(int n, int *list, double *buf, int /*pbc_fla
       buf[m++] = h[j];
       buf[m++] = omega_[j];
     }
+    if (alpha_atom_) buf[m++] = alpha_atom_[j];
+    if (cond) buf[m++] = uest[j];
   }
   return m;
 }
@@ -796,6 +845,8 @@ void PairSPHAstro::unpack_forward_comm(int n, int first, double *buf)
     return;
   }
   const bool gradh = hmode_ == HMode::GRADH;
+  const bool cond = cond_alpha_ > 0.0 && eos_.uses_energy();
+  double *uest = atom->dvector[state_.uest];
   for (int i = first; i < first + n; i++) {
     rho[i] = buf[m++];
     pressure_[i] = buf[m++];
@@ -807,6 +858,8 @@ void PairSPHAstro::unpack_forward_comm(int n, int first, double *buf)
       h[i] = buf[m++];
       omega_[i] = buf[m++];
     }
+    if (alpha_atom_) alpha_atom_[i] = buf[m++];
+    if (cond) uest[i] = buf[m++];
   }
 }
 
@@ -872,21 +925,21 @@ void PairSPHAstro::read_restart(FILE *fp)
 void PairSPHAstro::write_restart_settings(FILE *fp)
 {
   int ival[3] = {static_cast<int>(kernel_), static_cast<int>(eos_.type), visc_on_ ? 1 : 0};
-  double dval[6] = {eos_.gamma, eos_.cs, eos_.K, visc_alpha_, visc_beta_, visc_eps_};
+  double dval[7] = {eos_.gamma, eos_.cs, eos_.K, visc_alpha_, visc_beta_, visc_eps_, cond_alpha_};
   fwrite(ival, sizeof(int), 3, fp);
-  fwrite(dval, sizeof(double), 6, fp);
+  fwrite(dval, sizeof(double), 7, fp);
 }
 
 void PairSPHAstro::read_restart_settings(FILE *fp)
 {
   int ival[3];
-  double dval[6];
+  double dval[7];
   if (comm->me == 0) {
     utils::sfread(FLERR, ival, sizeof(int), 3, fp, nullptr, error);
-    utils::sfread(FLERR, dval, sizeof(double), 6, fp, nullptr, error);
+    utils::sfread(FLERR, dval, sizeof(double), 7, fp, nullptr, error);
   }
   MPI_Bcast(ival, 3, MPI_INT, 0, world);
-  MPI_Bcast(dval, 6, MPI_DOUBLE, 0, world);
+  MPI_Bcast(dval, 7, MPI_DOUBLE, 0, world);
   kernel_ = static_cast<KernelType>(ival[0]);
   eos_.type = static_cast<EOSType>(ival[1]);
   visc_on_ = ival[2] != 0;
@@ -896,6 +949,7 @@ void PairSPHAstro::read_restart_settings(FILE *fp)
   visc_alpha_ = dval[3];
   visc_beta_ = dval[4];
   visc_eps_ = dval[5];
+  cond_alpha_ = dval[6];
   kernel_radius_ = SPHAstro::kernel_radius(kernel_);
 }
 
@@ -918,6 +972,8 @@ void *PairSPHAstro::extract_peratom(const char *name, int &ncol)
   if (strcmp(name, "divv") == 0) return (void *) divv_;
   if (strcmp(name, "nneigh") == 0) return (void *) nneigh_;
   if (strcmp(name, "omega") == 0) return (void *) omega_;
+  // non-null when omega_ holds grad-h factors (variable h by iteration)
+  if (strcmp(name, "omega_valid") == 0) return hmode_ == HMode::GRADH ? (void *) omega_ : nullptr;
   return nullptr;
 }
 

@@ -49,6 +49,9 @@ class PairSPHAstro : public Pair {
   double alpha() const { return visc_alpha_; }
   double beta() const { return visc_beta_; }
   bool has_viscosity() const { return visc_on_; }
+  double beta_factor() const { return visc_alpha_ > 0.0 ? visc_beta_ / visc_alpha_ : 0.0; }
+  // per-particle alpha (owned + ghost) when fix sph/astro/switch is active, else null
+  const double *alpha_per_atom() const { return alpha_atom_; }
   // the per-atom values of extract_peratom() belong to this step and these local atoms
   bigint computed_step() const { return computed_step_; }
   int computed_nlocal() const { return computed_nlocal_; }
@@ -61,6 +64,12 @@ class PairSPHAstro : public Pair {
   SPHAstro::EOS eos_;
   bool visc_on_ = true;
   double visc_alpha_ = 1.0, visc_beta_ = 2.0, visc_eps_ = 0.01;
+  double cond_alpha_ = 0.0;    // artificial conductivity alpha_u (0: off)
+
+  // per-particle viscosity alpha of fix sph/astro/switch (owned + ghost), null without it;
+  // beta follows as (beta / alpha) x alpha_i
+  class FixSPHAstroSwitch *switch_ = nullptr;
+  double *alpha_atom_ = nullptr;
 
   SPHAstro::StateIndex state_;
 
@@ -92,8 +101,8 @@ class PairSPHAstro : public Pair {
 
   void allocate();
   void grow_work_arrays();
-  template <class KERNEL, int DIM, bool ENERGY, bool VISC> void eval();
-  template <class KERNEL, int DIM, bool ENERGY, bool VISC> void eval_gradh();
+  template <class KERNEL, int DIM, bool ENERGY, bool VISC, bool COND> void eval();
+  template <class KERNEL, int DIM, bool ENERGY, bool VISC, bool COND> void eval_gradh();
   template <class KERNEL, int DIM> void density_gradh();
   template <class KERNEL, int DIM> void dispatch_physics();
   template <class KERNEL> void dispatch_dimension();

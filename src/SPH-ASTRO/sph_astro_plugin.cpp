@@ -9,6 +9,7 @@
 #include "compute_sph_astro_global.h"
 #include "fix_sph_astro.h"
 #include "fix_sph_astro_h.h"
+#include "fix_sph_astro_switch.h"
 #include "pair_sph_astro.h"
 #include "sph_astro_state_command.h"
 
@@ -27,6 +28,11 @@ static Fix *fix_sph_astro_creator(LAMMPS *lmp, int narg, char **arg)
 static Fix *fix_sph_astro_h_creator(LAMMPS *lmp, int narg, char **arg)
 {
   return new FixSPHAstroH(lmp, narg, arg);
+}
+
+static Fix *fix_sph_astro_switch_creator(LAMMPS *lmp, int narg, char **arg)
+{
+  return new FixSPHAstroSwitch(lmp, narg, arg);
 }
 
 static Compute *compute_sph_astro_atom_creator(LAMMPS *lmp, int narg, char **arg)
@@ -68,6 +74,11 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "sph/astro/h";
   plugin.info = "SPH-ASTRO variable smoothing length: dh/dt or h-rho iteration with grad-h";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_sph_astro_h_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.name = "sph/astro/switch";
+  plugin.info = "SPH-ASTRO per-particle viscosity alpha: Morris & Monaghan 1997 switch";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_sph_astro_switch_creator;
   (*register_plugin)(&plugin, lmp);
 
   plugin.style = "compute";

@@ -1,0 +1,137 @@
+/* ----------------------------------------------------------------------
+   SPH-ASTRO: Morris & Monaghan viscosity switch
+------------------------------------------------------------------------- */
+
+// fix ID group sph/astro/switch morris-monaghan ALPHA_MIN ALPHA_MAX L
+//
+// Particles start at alpha_max unless d_alpha was set (set group all d_alpha 0.1). After each
+// force evaluation alpha_i is advanced over dt with the exact solution of the linear ODE at
+// frozen coefficients (switch_morris_monaghan() in sph_astro_pair_terms.h), which stays
+// between alpha_min and alpha_max for any dt.
+// Global vector: 1 mean alpha, 2 largest alpha (group).
+
+#include "fix_sph_astro_switch.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "force.h"
+#include "modify.h"
+#include "pair_sph_astro.h"
+#include "sph_astro_pair_terms.h"
+#include "update.h"
+#include "utils.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+static constexpr const char *ALPHA_FIX_ID = "SPH_ASTRO_ALPHA";
+
+FixSPHAstroSwitch::FixSPHAstroSwitch(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
+{
+  vector_flag = 1;
+  size_vector = 2;
+  global_freq = 1;
+  extvector = 0;
+
+  if (narg < 4) utils::missing_cmd_args(FLERR, "fix sph/astro/switch", error);
+  if (strcmp(arg[3], "morris-monaghan") != 0)
+    error->all(FLERR, "fix sph/astro/switch: switch '{}' is not one of: morris-monaghan", arg[3]);
+  if (narg != 7)
+    error->all(FLERR,
+               "fix sph/astro/switch morris-monaghan takes ALPHA_MIN ALPHA_MAX L (got {} "
+               "values)",
+               narg - 4);
+  alpha_min_ = utils::numeric(FLERR, arg[4], false, lmp);
+  alpha_max_ = utils::numeric(FLERR, arg[5], false, lmp);
+  ell_ = utils::numeric(FLERR, arg[6], false, lmp);
+  if (alpha_min_ < 0.0 || !(alpha_max_ > alpha_min_))
+    error->all(FLERR,
+               "fix sph/astro/switch: need 0 <= alpha_min < alpha_max (got alpha_min = {}, "
+               "alpha_max = {})",
+               arg[4], arg[5]);
+  if (!(ell_ > 0.0))
+    error->all(FLERR, "fix sph/astro/switch: decay constant L = {} must be > 0", arg[6]);
+}
+
+int FixSPHAstroSwitch::setmask()
+{
+  return FINAL_INTEGRATE;
+}
+
+void FixSPHAstroSwitch::post_constructor()
+{
+  int flag, cols;
+  alpha_index_ = atom->find_custom("alpha", flag, cols);
+  if (alpha_index_ < 0) {
+    modify->add_fix(std::string(ALPHA_FIX_ID) + " all property/atom d_alpha ghost yes");
+    alpha_index_ = atom->find_custom("alpha", flag, cols);
+    // a new switch starts at alpha_max
+    double *a = atom->dvector[alpha_index_];
+    for (int i = 0; i < atom->nlocal; i++) a[i] = alpha_max_;
+  } else if (flag != 1 || cols != 0)
+    error->all(FLERR, "fix sph/astro/switch: custom property alpha exists but is not d_alpha");
+}
+
+double *FixSPHAstroSwitch::alpha()
+{
+  int flag, cols;
+  alpha_index_ = atom->find_custom("alpha", flag, cols);
+  return alpha_index_ >= 0 ? atom->dvector[alpha_index_] : nullptr;
+}
+
+void FixSPHAstroSwitch::init()
+{
+  pair_ = dynamic_cast<PairSPHAstro *>(force->pair_match("^sph/astro$", 0, 0));
+  if (!pair_) error->all(FLERR, "fix sph/astro/switch requires pair_style sph/astro");
+  if (!SPHAstro::find_state(lmp, state_) || modify->get_fix_by_style("^sph/astro$").empty())
+    error->all(FLERR, "fix sph/astro/switch requires fix sph/astro");
+  if (modify->get_fix_by_style("^sph/astro/switch$").size() > 1)
+    error->all(FLERR, "fix sph/astro/switch: only one instance is allowed");
+}
+
+void FixSPHAstroSwitch::setup(int /*vflag*/)
+{
+  // values outside [alpha_min, alpha_max] (e.g. 0 for atoms created later) start at alpha_max
+  double *a = alpha();
+  for (int i = 0; i < atom->nlocal; i++)
+    if (!(a[i] >= alpha_min_ && a[i] <= alpha_max_)) a[i] = alpha_max_;
+}
+
+void FixSPHAstroSwitch::final_integrate()
+{
+  int ncol;
+  const auto *divv = static_cast<double *>(pair_->extract_peratom("divv", ncol));
+  const auto *cs = static_cast<double *>(pair_->extract_peratom("soundspeed", ncol));
+  const double *h = atom->dvector[state_.h];
+  double *a = alpha();
+  const int *mask = atom->mask;
+  const double dt = update->dt;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (mask[i] & groupbit)
+      a[i] = SPHAstro::switch_morris_monaghan(a[i], divv[i], cs[i], h[i], dt, alpha_min_,
+                                              alpha_max_, ell_);
+}
+
+double FixSPHAstroSwitch::compute_vector(int n)
+{
+  const double *a = alpha();
+  const int *mask = atom->mask;
+  double local[2] = {0.0, 0.0}, count = 0.0, all[2];
+  for (int i = 0; i < atom->nlocal; i++)
+    if (mask[i] & groupbit) {
+      local[0] += a[i];
+      local[1] = MAX(local[1], a[i]);
+      count += 1.0;
+    }
+  if (n == 0) {
+    double sums[2] = {local[0], count};
+    MPI_Allreduce(sums, all, 2, MPI_DOUBLE, MPI_SUM, world);
+    return all[1] > 0.0 ? all[0] / all[1] : 0.0;
+  }
+  MPI_Allreduce(&local[1], &all[0], 1, MPI_DOUBLE, MPI_MAX, world);
+  return all[0];
+}
