@@ -313,6 +313,27 @@ TEST(FixSPHAstro, AdaptiveTimestepFollowsCourantCriterion) {
   EXPECT_GT(lmp->update->dt, 0.8 * expected);
 }
 
+TEST(FixSPHAstro, TimestepIsTheSmallestOfItsThreeCriteria) {
+  // an expanding hot ball: its outer particles cool (du/dt < 0), so dt_u is
+  // finite
+  auto lmp = open_lammps();
+  gas(lmp, "ball", 6, PAIR, "sph/astro courant 0.3 force 0.25 energy 0.2");
+  commands(lmp, {"fix hvar all sph/astro/h iterate margin 2.0", "run 30"});
+  auto *fix = lmp->modify->get_fix_by_id("gas");
+  const double dtcv = fix->compute_vector(0), dtf = fix->compute_vector(1),
+               dtu = fix->compute_vector(2);
+  ASSERT_TRUE(std::isfinite(dtcv) && std::isfinite(dtf) && std::isfinite(dtu));
+  EXPECT_DOUBLE_EQ(lmp->update->dt, std::min(dtcv, std::min(dtf, dtu)));
+  EXPECT_DOUBLE_EQ(fix->compute_scalar(), lmp->update->dt);
+  // the global compute reports the h range and the iteration statistics
+  const auto g = global_vector(lmp, "sum", 18);
+  ASSERT_EQ(g.size(), 18u);
+  EXPECT_GT(g[12], 0.0);
+  EXPECT_GT(g[13], g[12]); // the rarefied surface has the largest h
+  EXPECT_GE(g[14], 1.0);   // mean Newton iterations
+  EXPECT_EQ(g[16], 0.0);   // no failures
+}
+
 TEST(FixSPHAstro, StopsAtTend) {
   auto lmp = open_lammps();
   gas(lmp, "box", 3, PAIR, "sph/astro tend 0.0375");

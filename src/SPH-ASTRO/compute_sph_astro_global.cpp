@@ -8,6 +8,9 @@
 //   10 potential energy (pair, kspace and fix contributions, as compute pe)
 //   11 total energy  12 (E - E0)/|E0|, E0 the total energy when this compute was first
 //   evaluated; fix sph/astro keeps E0 (per compute ID) across restarts.
+//   13-14 smallest and largest h; 15-18 h iteration (fix sph/astro/h iterate): mean and
+//   largest Newton iterations of the latest density pass, particles that failed to converge
+//   since the run began, particles held at the h cap (0 without that fix)
 // Sums run over the compute's group; the potential energy is that of the whole system.
 
 #include "compute_sph_astro_global.h"
@@ -15,6 +18,7 @@
 #include "atom.h"
 #include "domain.h"
 #include "error.h"
+#include "fix.h"
 #include "fix_sph_astro.h"
 #include "force.h"
 #include "kspace.h"
@@ -35,7 +39,7 @@ ComputeSPHAstroGlobal::ComputeSPHAstroGlobal(LAMMPS *lmp, int narg, char **arg) 
   size_vector = NVALUES;
   extvector = -1;    // sums are extensive, the relative energy error is not
   extlist = new int[NVALUES];
-  for (int k = 0; k < NVALUES; k++) extlist[k] = (k == DEREL) ? 0 : 1;
+  for (int k = 0; k < NVALUES; k++) extlist[k] = (k <= ETOT) ? 1 : 0;
   peflag = 1;    // the potential energy must be tallied on the steps this compute is used
   timeflag = 1;
   vector = new double[NVALUES];
@@ -55,6 +59,8 @@ void ComputeSPHAstroGlobal::init()
     error->all(FLERR, "compute sph/astro/global requires fix sph/astro (the per-particle state)");
   auto fixes = modify->get_fix_by_style("^sph/astro$");
   fix_ = fixes.empty() ? nullptr : dynamic_cast<FixSPHAstro *>(fixes.front());
+  auto hfixes = modify->get_fix_by_style("^sph/astro/h$");
+  hfix_ = hfixes.empty() ? nullptr : hfixes.front();
 }
 
 void ComputeSPHAstroGlobal::compute_vector()
@@ -78,6 +84,8 @@ void ComputeSPHAstroGlobal::compute_vector()
 
   double local[NVALUES] = {0.0};
   double unwrap[3];
+  const double *h = atom->dvector[state_.h];
+  double hrange[2] = {INFINITY, -INFINITY};    // -hmin, hmax for one MPI_MAX
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     const double m = rmass ? rmass[i] : mass[type[i]];
@@ -91,8 +99,17 @@ void ComputeSPHAstroGlobal::compute_vector()
     local[LZ] += m * (unwrap[0] * v[i][1] - unwrap[1] * v[i][0]);
     local[EKIN] += 0.5 * m * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
     local[ETHERM] += m * eos.energy_of(rho[i], u[i]);
+    hrange[0] = MIN(hrange[0], h[i]);
+    hrange[1] = MAX(hrange[1], h[i]);
   }
   MPI_Allreduce(local, vector, NVALUES, MPI_DOUBLE, MPI_SUM, world);
+  hrange[0] = -hrange[0];
+  double hall[2];
+  MPI_Allreduce(hrange, hall, 2, MPI_DOUBLE, MPI_MAX, world);
+  vector[HMIN] = -hall[0];
+  vector[HMAX] = hall[1];
+  for (int k = HITER_MEAN; k <= HCAPPED; k++)
+    vector[k] = hfix_ ? hfix_->compute_vector(k - HITER_MEAN) : 0.0;
 
   // potential energy as compute pe: pair (sph/astro itself adds none), kspace, fixes
   double epot = 0.0, pair_energy = 0.0;

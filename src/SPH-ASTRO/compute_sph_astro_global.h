@@ -23,12 +23,33 @@ class ComputeSPHAstroGlobal : public Compute {
   void init() override;
   void compute_vector() override;
 
-  enum Index { MASS, PX, PY, PZ, LX, LY, LZ, EKIN, ETHERM, EPOT, ETOT, DEREL, NVALUES };
+  enum Index {
+    MASS,
+    PX,
+    PY,
+    PZ,
+    LX,
+    LY,
+    LZ,
+    EKIN,
+    ETHERM,
+    EPOT,
+    ETOT,
+    DEREL,
+    HMIN,
+    HMAX,
+    HITER_MEAN,
+    HITER_MAX,
+    HITER_FAILED,
+    HCAPPED,
+    NVALUES
+  };
 
  private:
   SPHAstro::StateIndex state_;
   class PairSPHAstro *pair_ = nullptr;
   class FixSPHAstro *fix_ = nullptr;
+  class Fix *hfix_ = nullptr;    // fix sph/astro/h, for the h-iteration statistics
   bool own_reference_set_ = false;
   double own_reference_ = 0.0;
 };

@@ -10,6 +10,7 @@
 //   v^{n+1} = v^{n+1/2} + dt/2 a^{n+1},  u^{n+1} = u^{n+1/2} + dt/2 du^{n+1}
 // Adaptive global timestep (seed 000, "criteria for choosing the timestep"):
 //   dt_cv = C h / (c + h|div v| + 1.2 (alpha c + beta h |div v|)),  dt_f = C_f sqrt(h / |a|)
+// and, for the ideal gas, dt_u = C_u u / |du/dt| where du/dt < 0 (keeps u positive).
 
 #include "fix_sph_astro.h"
 
@@ -39,8 +40,8 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg
   time_integrate = 1;
   restart_global = 1;
   scalar_flag = 1;    // current dt
-  vector_flag = 1;    // [dt_courant, dt_force]
-  size_vector = 2;
+  vector_flag = 1;    // [dt_courant, dt_force, dt_energy]
+  size_vector = 3;
   global_freq = 1;
   extscalar = 0;
   extvector = 0;
@@ -58,6 +59,10 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg
       force_factor_ = utils::numeric(FLERR, val, false, lmp);
       if (!(force_factor_ > 0.0) || force_factor_ > 1.0)
         error->all(FLERR, "fix sph/astro: force = {} must be in (0, 1]", val);
+    } else if (key == "energy") {
+      energy_factor_ = utils::numeric(FLERR, val, false, lmp);
+      if (energy_factor_ < 0.0 || energy_factor_ > 1.0)
+        error->all(FLERR, "fix sph/astro: energy = {} must be in [0, 1] (0: no u criterion)", val);
     } else if (key == "dtmax") {
       dtmax_ = utils::numeric(FLERR, val, false, lmp);
       if (!(dtmax_ > 0.0)) error->all(FLERR, "fix sph/astro: dtmax = {} must be > 0", val);
@@ -76,8 +81,8 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg
         error->all(FLERR, "fix sph/astro: dt '{}' is not one of: adaptive, fixed", val);
     } else
       error->all(FLERR,
-                 "fix sph/astro: unknown keyword '{}'; allowed: courant, force, dtmax, dtmin, "
-                 "tend, dt",
+                 "fix sph/astro: unknown keyword '{}'; allowed: courant, force, energy, dtmax, "
+                 "dtmin, tend, dt",
                  key);
     iarg += 2;
   }
@@ -315,11 +320,16 @@ void FixSPHAstro::next_timestep(bool from_end_of_step)
     const double *alpha_atom = pair_->alpha_per_atom();    // viscosity switch, or null
     const double beta_factor = pair_->beta_factor();
 
+    const double *u = atom->dvector[state_.u];
+    const double *dudt = atom->dvector[state_.dudt];
+    const bool energy_limit = evolve_u_ && energy_factor_ > 0.0;
+
+    // minimum over particles of each criterion, with the rank of the limiting atom
     struct {
       double value;
       int rank;
-    } mine[2] = {{INFINITY, comm->me}, {INFINITY, comm->me}}, all[2];
-    tagint limiting[2] = {0, 0};
+    } mine[3] = {{INFINITY, comm->me}, {INFINITY, comm->me}, {INFINITY, comm->me}}, all[3];
+    tagint limiting[3] = {0, 0, 0};
     for (int i = 0; i < nlocal; i++) {
       if (!(mask[i] & groupbit)) continue;
       const double hdiv = h[i] * std::fabs(divv[i]);
@@ -342,12 +352,23 @@ void FixSPHAstro::next_timestep(bool from_end_of_step)
           limiting[1] = atom->tag[i];
         }
       }
+      // a falling u must not overshoot zero: dt_u = C_u u / |du/dt| where du/dt < 0
+      if (energy_limit && dudt[i] < 0.0) {
+        const double dtu = energy_factor_ * u[i] / -dudt[i];
+        if (dtu < mine[2].value) {
+          mine[2].value = dtu;
+          limiting[2] = atom->tag[i];
+        }
+      }
     }
-    MPI_Allreduce(mine, all, 2, MPI_DOUBLE_INT, MPI_MINLOC, world);
+    MPI_Allreduce(mine, all, 3, MPI_DOUBLE_INT, MPI_MINLOC, world);
     last_dt_cv_ = all[0].value;
     last_dt_force_ = all[1].value;
-    const double dtnew = MIN(all[0].value, all[1].value);
-    const int which = all[0].value <= all[1].value ? 0 : 1;
+    last_dt_energy_ = all[2].value;
+    int which = 0;
+    for (int k = 1; k < 3; k++)
+      if (all[k].value < all[which].value) which = k;
+    const double dtnew = all[which].value;
     last_limiting_atom_ = limiting[which];
     MPI_Bcast(&last_limiting_atom_, 1, MPI_LMP_TAGINT, all[which].rank, world);
     // with no finite constraint (isolated cold particles) the step stays as it is
@@ -356,8 +377,9 @@ void FixSPHAstro::next_timestep(bool from_end_of_step)
     if (dtmin_ > 0.0 && dt < dtmin_)
       error->all(FLERR,
                  "fix sph/astro: timestep {} fell below dtmin = {} at step {} (limited by atom "
-                 "{}: Courant dt {}, force dt {})",
-                 dt, dtmin_, update->ntimestep, last_limiting_atom_, last_dt_cv_, last_dt_force_);
+                 "{}: Courant dt {}, force dt {}, energy dt {})",
+                 dt, dtmin_, update->ntimestep, last_limiting_atom_, last_dt_cv_, last_dt_force_,
+                 last_dt_energy_);
   }
   if (tend_ > 0.0) {
     const double remaining = tend_ - current_time();
@@ -392,7 +414,7 @@ double FixSPHAstro::compute_scalar()
 
 double FixSPHAstro::compute_vector(int n)
 {
-  return n == 0 ? last_dt_cv_ : last_dt_force_;
+  return n == 0 ? last_dt_cv_ : (n == 1 ? last_dt_force_ : last_dt_energy_);
 }
 
 double FixSPHAstro::reference_energy(const std::string &compute_id, double current)

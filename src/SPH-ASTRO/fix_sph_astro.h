@@ -42,11 +42,12 @@ class FixSPHAstro : public Fix {
   double reference_energy(const std::string &compute_id, double current);
 
  protected:
-  double courant_ = 0.3;         // C in dt = C h / (c + h|div v| + 1.2 (alpha c + beta h|div v|))
-  double force_factor_ = 0.3;    // C_f in dt = C_f sqrt(h / |a|)
-  double dtmax_ = 0.0;           // 0: no upper bound
-  double dtmin_ = 0.0;           // 0: no lower bound (a step below it is an error)
-  double tend_ = -1.0;           // < 0: no end time
+  double courant_ = 0.3;          // C in dt = C h / (c + h|div v| + 1.2 (alpha c + beta h|div v|))
+  double force_factor_ = 0.3;     // C_f in dt = C_f sqrt(h / |a|)
+  double energy_factor_ = 0.3;    // C_u in dt = C_u u / |du/dt| (where du/dt < 0)
+  double dtmax_ = 0.0;            // 0: no upper bound
+  double dtmin_ = 0.0;            // 0: no lower bound (a step below it is an error)
+  double tend_ = -1.0;            // < 0: no end time
   bool adaptive_ = true;
   bool stopped_at_tend_ = false;
 
@@ -62,7 +63,7 @@ class FixSPHAstro : public Fix {
   bool dt_pending_ = false;    // first dt of a run: set once all setup forces are in
   double user_dt_ = 0.0;       // with dt fixed: the step to restore after a tend clip
 
-  double last_dt_cv_ = 0.0, last_dt_force_ = 0.0;
+  double last_dt_cv_ = 0.0, last_dt_force_ = 0.0, last_dt_energy_ = 0.0;
   tagint last_limiting_atom_ = 0;
 
   void next_timestep(bool from_end_of_step = false);
