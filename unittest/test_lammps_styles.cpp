@@ -299,6 +299,64 @@ TEST(PairSPHAstro, ConductivitySmoothsTheContactPressureBlip) {
   EXPECT_LT(with, 0.5 * without);
 }
 
+// ------------------------------------------------------------- entropy
+// formulation
+
+TEST(FixSPHAstro, EntropyIsConstantWithoutDissipation) {
+  auto lmp = open_lammps();
+  gas(lmp, "ball", 6, "sph/astro eos ideal $(5.0/3.0) viscosity none",
+      "sph/astro thermal entropy courant 0.3");
+  commands(lmp, {"fix hvar all sph/astro/h iterate", "run 0"});
+  auto A0 = per_atom(lmp, "entropy");
+  auto u0 = per_atom(lmp, "u");
+  auto rho0 = per_atom(lmp, "rho");
+  // A = (gamma - 1) u / rho^(gamma-1) at the start
+  for (const auto &[id, a] : A0)
+    EXPECT_NEAR(a, (2.0 / 3.0) * u0[id] * std::pow(rho0[id], -2.0 / 3.0),
+                1e-12 * a);
+  commands(lmp, {"run 100"});
+  auto A = per_atom(lmp, "entropy");
+  auto u = per_atom(lmp, "u");
+  auto rho = per_atom(lmp, "rho");
+  for (const auto &[id, a] : A0) {
+    EXPECT_EQ(A[id], a) << "atom " << id; // adiabatic: dA/dt = 0 exactly
+    EXPECT_NEAR(u[id], 1.5 * a * std::pow(rho[id], 2.0 / 3.0), 1e-12 * u[id]);
+  }
+  const auto end = global_vector(lmp, "sum", 12);
+  EXPECT_LT(std::fabs(end[DEREL]),
+            1e-3); // energy: conserved to integration error
+}
+
+TEST(FixSPHAstro, EntropyRisesInShocksAndRestartsBitForBit) {
+  const std::string restart = "test_entropy.restart";
+  std::map<int, double> A_ref;
+  double mean_rise = 0.0;
+  {
+    auto lmp = open_lammps();
+    gas(lmp, "ball", 6, PAIR, "sph/astro thermal entropy courant 0.3", 0.05);
+    commands(lmp, {"variable vx atom -x", "variable vy atom -y",
+                   "variable vz atom -z", "velocity all set v_vx v_vy v_vz",
+                   "run 0"});
+    auto A0 = per_atom(lmp, "entropy");
+    commands(lmp, {"run 10", "write_restart " + restart, "run 10"});
+    A_ref = per_atom(lmp, "entropy");
+    for (const auto &[id, a] : A_ref) {
+      EXPECT_GE(a, A0[id] * (1.0 - 1e-12)); // viscous heating only raises A
+      mean_rise += a / A0[id] / A_ref.size();
+    }
+  }
+  EXPECT_GT(mean_rise, 1.1); // the cold converging flow is shock-heated
+  auto lmp = open_lammps();
+  commands(lmp, {"read_restart " + restart,
+                 "fix gas all sph/astro thermal entropy courant 0.3",
+                 "neighbor " + num(0.3 * 1.2 * std::cbrt(0.25)) + " bin",
+                 "neigh_modify every 1 delay 0 check yes", "run 10"});
+  auto A = per_atom(lmp, "entropy");
+  for (const auto &[id, a] : A_ref)
+    EXPECT_EQ(A[id], a) << "atom " << id;
+  std::remove(restart.c_str());
+}
+
 TEST(FixSPHAstro, AdaptiveTimestepFollowsCourantCriterion) {
   auto lmp = open_lammps();
   gas(lmp, "box", 3, PAIR, "sph/astro courant 0.2 force 0.3");
@@ -541,6 +599,7 @@ TEST_P(Restart, ContinuesBitForBit) {
   }
   auto lmp = open_lammps();
   commands(lmp, {"read_restart " + restart, "fix gas all sph/astro courant 0.3",
+                 "neighbor " + num(0.3 * 1.2 * std::cbrt(0.25)) + " bin",
                  "neigh_modify every 1 delay 0 check yes"});
   if (!extra.empty())
     commands(lmp, {extra});
@@ -578,6 +637,7 @@ TEST(FixSPHAstro, RestartWrittenDuringARunContinuesBitForBit) {
   commands(lmp, {"read_restart test_mid.20.restart",
                  "fix gas all sph/astro courant 0.3",
                  "fix hvar all sph/astro/h iterate",
+                 "neighbor " + num(0.3 * 1.2 * std::cbrt(0.25)) + " bin",
                  "neigh_modify every 1 delay 0 check yes", "run 20"});
   auto x = per_atom(lmp, "x", 0);
   auto u = per_atom(lmp, "u");
@@ -671,6 +731,8 @@ TEST_F(BadInput, FixArguments) {
   expect_error("fix gas all sph/astro dtmin 1 dtmax 0.1",
                "dtmin 1 is larger than dtmax 0.1");
   expect_error("fix gas all sph/astro speed 1", "unknown keyword 'speed'");
+  expect_error("fix gas all sph/astro thermal heat",
+               "thermal 'heat' is not one of");
   expect_error("fix gas all sph/astro courant",
                "Illegal fix sph/astro courant");
 }

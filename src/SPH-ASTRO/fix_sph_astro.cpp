@@ -59,6 +59,13 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg
       force_factor_ = utils::numeric(FLERR, val, false, lmp);
       if (!(force_factor_ > 0.0) || force_factor_ > 1.0)
         error->all(FLERR, "fix sph/astro: force = {} must be in (0, 1]", val);
+    } else if (key == "thermal") {
+      if (strcmp(val, "energy") == 0)
+        entropy_ = false;
+      else if (strcmp(val, "entropy") == 0)
+        entropy_ = true;
+      else
+        error->all(FLERR, "fix sph/astro: thermal '{}' is not one of: energy, entropy", val);
     } else if (key == "energy") {
       energy_factor_ = utils::numeric(FLERR, val, false, lmp);
       if (energy_factor_ < 0.0 || energy_factor_ > 1.0)
@@ -81,8 +88,8 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg
         error->all(FLERR, "fix sph/astro: dt '{}' is not one of: adaptive, fixed", val);
     } else
       error->all(FLERR,
-                 "fix sph/astro: unknown keyword '{}'; allowed: courant, force, energy, dtmax, "
-                 "dtmin, tend, dt",
+                 "fix sph/astro: unknown keyword '{}'; allowed: thermal, courant, force, energy, "
+                 "dtmax, dtmin, tend, dt",
                  key);
     iarg += 2;
   }
@@ -105,6 +112,7 @@ int FixSPHAstro::setmask()
 void FixSPHAstro::post_constructor()
 {
   ensure_state(lmp, "fix sph/astro");
+  if (entropy_) ensure_entropy_state(lmp, "fix sph/astro thermal entropy");
 }
 
 void FixSPHAstro::init()
@@ -119,6 +127,14 @@ void FixSPHAstro::init()
   if (!find_state(lmp, state_))
     error->all(FLERR, "fix sph/astro: the per-particle state fix {} is missing", STATE_FIX_ID);
   evolve_u_ = pair_->eos().uses_energy();
+  if (entropy_) {
+    if (pair_->eos().type != EOSType::IDEAL)
+      error->all(FLERR,
+                 "fix sph/astro thermal entropy needs pair_style sph/astro eos ideal (P = A "
+                 "rho^gamma)");
+    if (!find_entropy_state(lmp, entropy_index_))
+      error->all(FLERR, "fix sph/astro: the entropy state fix {} is missing", ENTROPY_FIX_ID);
+  }
   auto hfixes = modify->get_fix_by_style("^sph/astro/h$");
   hfix_ = hfixes.empty() ? nullptr : dynamic_cast<FixSPHAstroH *>(hfixes.front());
   if (modify->get_fix_by_style("^sph/astro$").size() > 1)
@@ -128,7 +144,9 @@ void FixSPHAstro::init()
 
   // predictions are kept only when they belong to this step and v and u are as the last run
   // left them (a continued or restarted run); after `velocity` or `set` they start anew
-  if (predicted_step_ != update->ntimestep || hash_velocity_energy() != state_hash_) {
+  const bool unchanged = hash_velocity_energy() == state_hash_;
+  if (!unchanged) entropy_needs_init_ = true;    // A follows from the new u at the next density
+  if (predicted_step_ != update->ntimestep || !unchanged) {
     const int nlocal = atom->nlocal;
     double **v = atom->v;
     double **vest = atom->darray[state_.vest];
@@ -186,6 +204,9 @@ void FixSPHAstro::initial_integrate(int /*vflag*/)
   double *u = atom->dvector[state_.u];
   double *uest = atom->dvector[state_.uest];
   const double *dudt = atom->dvector[state_.dudt];
+  double *A = entropy_ ? atom->dvector[entropy_index_.A] : nullptr;
+  double *Aest = entropy_ ? atom->dvector[entropy_index_.Aest] : nullptr;
+  const double *dAdt = entropy_ ? atom->dvector[entropy_index_.dAdt] : nullptr;
   const int nlocal = atom->nlocal;
 
   for (int i = 0; i < nlocal; i++) {
@@ -202,7 +223,10 @@ void FixSPHAstro::initial_integrate(int /*vflag*/)
       vest[i][d] = v[i][d] + dtfm * f[i][d];
       x[i][d] += dt * v[i][d];
     }
-    if (evolve_u_) {
+    if (entropy_) {
+      A[i] += dtf * dAdt[i];
+      Aest[i] = A[i] + dtf * dAdt[i];
+    } else if (evolve_u_) {
       u[i] += dtf * dudt[i];
       uest[i] = u[i] + dtf * dudt[i];
     } else
@@ -223,6 +247,10 @@ void FixSPHAstro::final_integrate()
   double *u = atom->dvector[state_.u];
   const double *dudt = atom->dvector[state_.dudt];
   const int nlocal = atom->nlocal;
+  double *A = entropy_ ? atom->dvector[entropy_index_.A] : nullptr;
+  const double *dAdt = entropy_ ? atom->dvector[entropy_index_.dAdt] : nullptr;
+  const double *rho = atom->dvector[state_.rho];
+  const double gamma = pair_->eos().gamma;
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
@@ -230,7 +258,15 @@ void FixSPHAstro::final_integrate()
     v[i][0] += dtfm * f[i][0];
     v[i][1] += dtfm * f[i][1];
     v[i][2] += dtfm * f[i][2];
-    if (evolve_u_) {
+    if (entropy_) {
+      // A and, from it, u = A rho^(gamma-1) / (gamma-1) at the end of the step (seed 000)
+      A[i] += dtf * dAdt[i];
+      if (!(A[i] >= 0.0) || !std::isfinite(A[i]))
+        error->one(FLERR,
+                   "fix sph/astro: atom {} has entropic function A = {} (dA/dt = {}) at step {}",
+                   atom->tag[i], A[i], dAdt[i], update->ntimestep);
+      u[i] = A[i] * std::pow(rho[i], gamma - 1.0) / (gamma - 1.0);
+    } else if (evolve_u_) {
       u[i] += dtf * dudt[i];
       if (!(u[i] >= 0.0) || !std::isfinite(u[i]))
         error->one(FLERR,
@@ -448,6 +484,7 @@ void FixSPHAstro::write_restart(FILE *fp)
 
 void FixSPHAstro::restart(char *buf)
 {
+  entropy_needs_init_ = false;    // A comes back with the restart file
   auto *list = reinterpret_cast<double *>(buf);
   int n = 0;
   predicted_step_ = static_cast<bigint>(list[n++]);

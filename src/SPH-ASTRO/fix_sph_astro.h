@@ -37,6 +37,12 @@ class FixSPHAstro : public Fix {
   void write_restart(FILE *) override;
   void restart(char *) override;
 
+  // thermal variable: specific energy u, or entropic function A (P = A rho^gamma)
+  bool entropy() const { return entropy_; }
+  // entropy formulation: A must be (re)derived from u and rho at the next density pass
+  bool entropy_needs_init() const { return entropy_needs_init_; }
+  void entropy_initialised() { entropy_needs_init_ = false; }
+
   // reference total energy of a compute sph/astro/global (by compute ID): set at its first
   // evaluation, kept across restarts
   double reference_energy(const std::string &compute_id, double current);
@@ -55,6 +61,9 @@ class FixSPHAstro : public Fix {
   class PairSPHAstro *pair_ = nullptr;
   class FixSPHAstroH *hfix_ = nullptr;    // variable h: advanced in the drift
   bool evolve_u_ = true;
+  bool entropy_ = false;
+  bool entropy_needs_init_ = true;
+  SPHAstro::EntropyIndex entropy_index_;
 
   // restart state
   bigint predicted_step_ = -1;    // step at which d2_vest/d_uest hold predictions

@@ -19,6 +19,7 @@
 
 #include "pair_sph_astro.h"
 
+#include "fix_sph_astro.h"
 #include "fix_sph_astro_h.h"
 #include "fix_sph_astro_switch.h"
 #include "sph_astro_pair_terms.h"
@@ -242,10 +243,15 @@ void PairSPHAstro::init_style()
                "pair_style sph/astro needs the SPH per-particle state: define fix sph/astro "
                "(it creates fix {})",
                STATE_FIX_ID);
-  if (modify->get_fix_by_style("^sph/astro$").empty())
+  auto integrators = modify->get_fix_by_style("^sph/astro$");
+  if (integrators.empty())
     error->all(FLERR,
                "pair_style sph/astro requires fix sph/astro: it integrates u and predicts the "
                "velocities the viscosity uses");
+  integrator_ = dynamic_cast<FixSPHAstro *>(integrators.front());
+  entropy_ = integrator_ && integrator_->entropy();
+  if (entropy_ && !find_entropy_state(lmp, entropy_index_))
+    error->all(FLERR, "pair_style sph/astro: the entropy state fix {} is missing", ENTROPY_FIX_ID);
   if (domain->dimension != 2 && domain->dimension != 3)
     error->all(FLERR, "pair_style sph/astro: dimension {} not supported", domain->dimension);
 
@@ -333,9 +339,23 @@ void PairSPHAstro::equation_of_state()
   const int nlocal = atom->nlocal;
   const double *rho = atom->dvector[state_.rho];
   const double *h = atom->dvector[state_.h];
-  const double *uest = atom->dvector[state_.uest];
+  double *uest = atom->dvector[state_.uest];
   const tagint *tag = atom->tag;
   const int *type = atom->type;
+
+  // entropy formulation: P = A rho^gamma (seed 000, "entropy equation"); A starts from u
+  if (entropy_) {
+    double *A = atom->dvector[entropy_index_.A];
+    double *Aest = atom->dvector[entropy_index_.Aest];
+    const double *u = atom->dvector[state_.u];
+    const double g1 = eos_.gamma - 1.0;
+    const bool init = integrator_->entropy_needs_init();
+    for (int i = 0; i < nlocal; i++) {
+      if (init) Aest[i] = A[i] = g1 * u[i] * std::pow(rho[i], -g1);
+      uest[i] = Aest[i] * std::pow(rho[i], g1) / g1;
+    }
+    if (init) integrator_->entropy_initialised();
+  }
   for (int i = 0; i < nlocal; i++) {
     if (!(rho[i] > 0.0) || !std::isfinite(rho[i]))
       error->one(FLERR, "pair_style sph/astro: atom {} has density {} (position not finite?)",
@@ -353,6 +373,25 @@ void PairSPHAstro::equation_of_state()
                  "finite and >= 0",
                  tag[i], u);
     eos_.pressure_soundspeed(rho[i], u, pressure_[i], soundspeed_[i]);
+  }
+}
+
+// du_i/dt so far holds the dissipative heating (viscosity, conductivity); add the P dV work
+// P_i/(Omega_i rho_i^2) sum_j m_j v_ij . grad W (Omega = 1 without grad-h terms). With the
+// entropy formulation dA_i/dt = (gamma-1) / rho_i^(gamma-1) x heating (seed 000).
+void PairSPHAstro::finish_thermal_rates(bool gradh)
+{
+  const int nlocal = atom->nlocal;
+  const double *rho = atom->dvector[state_.rho];
+  double *dudt = atom->dvector[state_.dudt];
+  if (entropy_) {
+    double *dAdt = atom->dvector[entropy_index_.dAdt];
+    const double g1 = eos_.gamma - 1.0;
+    for (int i = 0; i < nlocal; i++) dAdt[i] = g1 * std::pow(rho[i], -g1) * dudt[i];
+  }
+  for (int i = 0; i < nlocal; i++) {
+    const double omega = gradh ? omega_[i] : 1.0;
+    dudt[i] += pressure_[i] / (omega * rho[i] * rho[i]) * vdotgradw_[i];
   }
 }
 
@@ -506,10 +545,8 @@ template <class KERNEL, int DIM, bool ENERGY, bool VISC, bool COND> void PairSPH
     comm_stage_ = Stage::FORCE;
     comm->reverse_comm(this);
   }
-  for (int i = 0; i < nlocal; i++) {
-    divv_[i] = -vdotgradw_[i] / rho[i];
-    if (ENERGY) dudt[i] += pressure_[i] / (rho[i] * rho[i]) * vdotgradw_[i];
-  }
+  for (int i = 0; i < nlocal; i++) divv_[i] = -vdotgradw_[i] / rho[i];
+  if (ENERGY) finish_thermal_rates(false);
 }
 
 /* ----------------------------------------------------------------------
@@ -740,10 +777,8 @@ template <class KERNEL, int DIM, bool ENERGY, bool VISC, bool COND> void PairSPH
     comm_stage_ = Stage::FORCE;
     comm->reverse_comm(this);
   }
-  for (int i = 0; i < nlocal; i++) {
-    divv_[i] = -vdotgradw_[i] / (omega_[i] * rho[i]);
-    if (ENERGY) dudt[i] += pressure_[i] / (omega_[i] * rho[i] * rho[i]) * vdotgradw_[i];
-  }
+  for (int i = 0; i < nlocal; i++) divv_[i] = -vdotgradw_[i] / (omega_[i] * rho[i]);
+  if (ENERGY) finish_thermal_rates(true);
 }
 
 template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()

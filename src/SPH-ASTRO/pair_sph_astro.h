@@ -72,6 +72,9 @@ class PairSPHAstro : public Pair {
   double *alpha_atom_ = nullptr;
 
   SPHAstro::StateIndex state_;
+  class FixSPHAstro *integrator_ = nullptr;
+  bool entropy_ = false;    // fix sph/astro thermal entropy: P = A rho^gamma
+  SPHAstro::EntropyIndex entropy_index_;
 
   // smoothing length: fixed, evolved by dh/dt (both with the mean h_ij = (h_i + h_j)/2 in
   // every pair term), or iterated with rho (kernels W(h_i) and W(h_j), grad-h factor Omega)
@@ -107,6 +110,8 @@ class PairSPHAstro : public Pair {
   template <class KERNEL, int DIM> void dispatch_physics();
   template <class KERNEL> void dispatch_dimension();
   void equation_of_state();
+  // dA/dt from the dissipative heating (entropy formulation), then du/dt = heating + P dV
+  void finish_thermal_rates(bool gradh);
 };
 
 }    // namespace LAMMPS_NS

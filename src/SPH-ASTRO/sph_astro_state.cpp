@@ -65,4 +65,30 @@ Fix *ensure_state(LAMMPS *lmp, const char *caller)
   return fix;
 }
 
+bool find_entropy_state(LAMMPS *lmp, EntropyIndex &idx)
+{
+  int flag, cols;
+  idx.A = lmp->atom->find_custom("entropy", flag, cols);
+  if (idx.A < 0 || flag != 1 || cols != 0) return false;
+  idx.Aest = lmp->atom->find_custom("entropy_est", flag, cols);
+  if (idx.Aest < 0 || flag != 1 || cols != 0) return false;
+  idx.dAdt = lmp->atom->find_custom("dentropy", flag, cols);
+  if (idx.dAdt < 0 || flag != 1 || cols != 0) return false;
+  return true;
+}
+
+void ensure_entropy_state(LAMMPS *lmp, const char *caller)
+{
+  EntropyIndex idx;
+  if (lmp->modify->get_fix_by_id(ENTROPY_FIX_ID)) {
+    if (!find_entropy_state(lmp, idx))
+      lmp->error->all(FLERR,
+                      "{}: fix {} exists but does not hold d_entropy d_entropy_est d_dentropy",
+                      caller, ENTROPY_FIX_ID);
+    return;
+  }
+  lmp->modify->add_fix(std::string(ENTROPY_FIX_ID) +
+                       " all property/atom d_entropy d_entropy_est d_dentropy");
+}
+
 }    // namespace SPHAstro

@@ -44,6 +44,18 @@ LAMMPS_NS::Fix *ensure_state(LAMMPS_NS::LAMMPS *lmp, const char *caller);
 // look up the state columns; returns false if the state fix was never created
 bool find_state(LAMMPS_NS::LAMMPS *lmp, StateIndex &idx);
 
+// Entropy formulation (fix sph/astro thermal entropy): the entropic function A with
+// P = A rho^gamma lives in its own fix property/atom SPH_ASTRO_ENTROPY:
+//   d_entropy       A
+//   d_entropy_est   A predicted to the end of the step
+//   d_dentropy      dA/dt                   (computed by pair sph/astro)
+constexpr const char *ENTROPY_FIX_ID = "SPH_ASTRO_ENTROPY";
+struct EntropyIndex {
+  int A = -1, Aest = -1, dAdt = -1;
+};
+void ensure_entropy_state(LAMMPS_NS::LAMMPS *lmp, const char *caller);
+bool find_entropy_state(LAMMPS_NS::LAMMPS *lmp, EntropyIndex &idx);
+
 }    // namespace SPHAstro
 
 #endif
