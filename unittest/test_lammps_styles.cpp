@@ -229,6 +229,28 @@ TEST(FixSPHAstroSwitch, AlphaRisesUnderCompressionAndConservesMomentum) {
   EXPECT_LT(std::fabs(end[DEREL]), 1e-2);
 }
 
+TEST(FixSPHAstroSwitch, AlphaComesBackFromARestart) {
+  const std::string restart = "test_switch.restart";
+  std::map<int, double> alpha_ref;
+  {
+    auto lmp = open_lammps();
+    gas(lmp, "box", 3, PAIR, "sph/astro courant 0.3");
+    commands(lmp, {"fix av all sph/astro/switch morris-monaghan 0.1 1.5 0.2",
+                   "run 10", "write_restart " + restart});
+    alpha_ref = per_atom(lmp, "alpha");
+  }
+  auto lmp = open_lammps();
+  commands(lmp, {"read_restart " + restart, "fix gas all sph/astro courant 0.3",
+                 "fix av all sph/astro/switch morris-monaghan 0.1 1.5 0.2"});
+  auto alpha = per_atom(lmp, "alpha");
+  ASSERT_EQ(alpha.size(), alpha_ref.size());
+  for (const auto &[id, a] : alpha_ref) {
+    EXPECT_LT(a, 1.5); // it has decayed from alpha_max
+    EXPECT_EQ(alpha[id], a) << "atom " << id;
+  }
+  std::remove(restart.c_str());
+}
+
 static double energy_error_conductivity(double dt) {
   auto lmp = open_lammps();
   gas(lmp, "ball", 6,

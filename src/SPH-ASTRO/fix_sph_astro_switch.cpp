@@ -67,11 +67,14 @@ void FixSPHAstroSwitch::post_constructor()
   int flag, cols;
   alpha_index_ = atom->find_custom("alpha", flag, cols);
   if (alpha_index_ < 0) {
-    modify->add_fix(std::string(ALPHA_FIX_ID) + " all property/atom d_alpha ghost yes");
+    Fix *store =
+        modify->add_fix(std::string(ALPHA_FIX_ID) + " all property/atom d_alpha ghost yes");
     alpha_index_ = atom->find_custom("alpha", flag, cols);
-    // a new switch starts at alpha_max
-    double *a = atom->dvector[alpha_index_];
-    for (int i = 0; i < atom->nlocal; i++) a[i] = alpha_max_;
+    // a new switch starts at alpha_max; after read_restart the stored alpha comes back
+    if (!store->restart_reset) {
+      double *a = atom->dvector[alpha_index_];
+      for (int i = 0; i < atom->nlocal; i++) a[i] = alpha_max_;
+    }
   } else if (flag != 1 || cols != 0)
     error->all(FLERR, "fix sph/astro/switch: custom property alpha exists but is not d_alpha");
 }
@@ -91,11 +94,9 @@ void FixSPHAstroSwitch::init()
     error->all(FLERR, "fix sph/astro/switch requires fix sph/astro");
   if (modify->get_fix_by_style("^sph/astro/switch$").size() > 1)
     error->all(FLERR, "fix sph/astro/switch: only one instance is allowed");
-}
 
-void FixSPHAstroSwitch::setup(int /*vflag*/)
-{
-  // values outside [alpha_min, alpha_max] (e.g. 0 for atoms created later) start at alpha_max
+  // values outside [alpha_min, alpha_max] (set by hand, or left in the storage of atoms
+  // created later: set their d_alpha) start at alpha_max, before the setup forces use them
   double *a = alpha();
   for (int i = 0; i < atom->nlocal; i++)
     if (!(a[i] >= alpha_min_ && a[i] <= alpha_max_)) a[i] = alpha_max_;

@@ -29,7 +29,6 @@ class FixSPHAstroSwitch : public Fix {
   int setmask() override;
   void post_constructor() override;
   void init() override;
-  void setup(int) override;
   void final_integrate() override;
   double compute_vector(int) override;
 

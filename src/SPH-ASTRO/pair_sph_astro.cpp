@@ -263,6 +263,12 @@ void PairSPHAstro::init_style()
     hmode_ = hfix_->mode() == FixSPHAstroH::Mode::ITERATE ? HMode::GRADH : HMode::DHDT;
   const double margin = hfix_ ? hfix_->margin() : 1.0;
 
+  if (cond_alpha_ > 0.0 && !eos_.uses_energy() && comm->me == 0)
+    error->warning(FLERR,
+                   "pair_style sph/astro: conductivity {} has no effect with eos {} (only the "
+                   "ideal gas evolves u)",
+                   cond_alpha_, eos_.type == EOSType::ISOTHERMAL ? "isothermal" : "polytropic");
+
   auto switches = modify->get_fix_by_style("^sph/astro/switch$");
   switch_ = switches.empty() ? nullptr : dynamic_cast<FixSPHAstroSwitch *>(switches.front());
   if (switch_ && !(visc_on_ && visc_alpha_ > 0.0))
