@@ -405,14 +405,11 @@ template <class KERNEL, int DIM, bool ENERGY, bool VISC, bool COND> void PairSPH
 {
   using K = Kernel<KERNEL, DIM>;
   double **x = atom->x;
-  double **f = atom->f;
   const int *type = atom->type;
   const double *rmass = atom->rmass;
   const double *mass = atom->mass;
   double *rho = atom->dvector[state_.rho];
   const double *h = atom->dvector[state_.h];
-  double *dudt = atom->dvector[state_.dudt];
-  double **vest = atom->darray[state_.vest];
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
   const int newton_pair = force->newton_pair;
@@ -473,86 +470,7 @@ template <class KERNEL, int DIM, bool ENERGY, bool VISC, bool COND> void PairSPH
   comm_stage_ = Stage::DENSITY;
   comm->forward_comm(this);
 
-  // pass 2: accelerations, du/dt, div v
-
-  const double alpha = visc_alpha_, beta = visc_beta_, eps = visc_eps_;
-  const double *alpha_atom = alpha_atom_;    // per-atom alpha of a switch, or null
-  const double beta_factor = alpha > 0.0 ? beta / alpha : 0.0;
-  const double alpha_u = cond_alpha_;
-  const double *uest = atom->dvector[state_.uest];
-  for (int i = 0; i < nzero; i++) {
-    vdotgradw_[i] = 0.0;
-    if (ENERGY) dudt[i] = 0.0;
-  }
-  for (int ii = 0; ii < inum; ii++) {
-    const int i = ilist[ii];
-    const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
-    const double vxi = vest[i][0], vyi = vest[i][1], vzi = vest[i][2];
-    const double hi = h[i];
-    const double mi = rmass ? rmass[i] : mass[type[i]];
-    const double rhoi = rho[i];
-    const double prhoi = pressure_[i] / (rhoi * rhoi);
-    const double ci = soundspeed_[i];
-    double fxi = 0.0, fyi = 0.0, fzi = 0.0, vgwi = 0.0, heati = 0.0;
-    const int *jlist = firstneigh[i];
-    const int jnum = numneigh[i];
-    for (int jj = 0; jj < jnum; jj++) {
-      const int j = jlist[jj] & NEIGHMASK;
-      const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
-      const double r2 = dx * dx + dy * dy + dz * dz;
-      const double hij = 0.5 * (hi + h[j]);
-      if (r2 >= R2 * hij * hij || r2 == 0.0) continue;    // grad W(0) = 0
-      const double r = std::sqrt(r2);
-      const double hinv = 1.0 / hij;
-      // (dW/dr) / r: grad_i W_ij = dwdr_r * r_ij
-      const double dwdr_r = sigma * inv_h_pow_dim<DIM>(hinv) * hinv * K::dw(r * hinv) / r;
-      const double mj = rmass ? rmass[j] : mass[type[j]];
-      const double rhoj = rho[j];
-      const double dvx = vxi - vest[j][0], dvy = vyi - vest[j][1], dvz = vzi - vest[j][2];
-      const double vdotr = dvx * dx + dvy * dy + dvz * dz;
-      double visc = 0.0;
-      if (VISC && vdotr < 0.0) {
-        const double a = alpha_atom ? 0.5 * (alpha_atom[i] + alpha_atom[j]) : alpha;
-        const double b = alpha_atom ? beta_factor * a : beta;
-        visc = viscosity_classic(vdotr, r2, hij, a, b, eps, 0.5 * (ci + soundspeed_[j]),
-                                 0.5 * (rhoi + rhoj));
-      }
-      const double fpair = -mi * mj * (prhoi + pressure_[j] / (rhoj * rhoj) + visc) * dwdr_r;
-      const double vgw = vdotr * dwdr_r;
-      fxi += dx * fpair;
-      fyi += dy * fpair;
-      fzi += dz * fpair;
-      vgwi += mj * vgw;
-      if (ENERGY && VISC) heati += 0.5 * mj * visc * vgw;
-      double cond = 0.0;    // conductivity flux times dW/dr
-      if (COND) {
-        cond = conductivity_flux(alpha_u, uest[i], uest[j], pressure_[i], pressure_[j],
-                                 0.5 * (rhoi + rhoj)) *
-            dwdr_r * r;
-        heati += mj * cond;
-      }
-      if (newton_pair || j < nlocal) {
-        f[j][0] -= dx * fpair;
-        f[j][1] -= dy * fpair;
-        f[j][2] -= dz * fpair;
-        vdotgradw_[j] += mi * vgw;
-        if (ENERGY && VISC) dudt[j] += 0.5 * mi * visc * vgw;
-        if (COND) dudt[j] -= mi * cond;
-      }
-      if (evflag) ev_tally(i, j, nlocal, newton_pair, 0.0, 0.0, fpair, dx, dy, dz);
-    }
-    f[i][0] += fxi;
-    f[i][1] += fyi;
-    f[i][2] += fzi;
-    vdotgradw_[i] += vgwi;
-    if (ENERGY) dudt[i] += heati;
-  }
-  if (newton_pair) {
-    comm_stage_ = Stage::FORCE;
-    comm->reverse_comm(this);
-  }
-  for (int i = 0; i < nlocal; i++) divv_[i] = -vdotgradw_[i] / rho[i];
-  if (ENERGY) finish_thermal_rates(false);
+  force_pass<KERNEL, DIM, false, ENERGY, VISC, COND>();
 }
 
 /* ----------------------------------------------------------------------
@@ -672,6 +590,23 @@ template <class KERNEL, int DIM> void PairSPHAstro::density_gradh()
 
 template <class KERNEL, int DIM, bool ENERGY, bool VISC, bool COND> void PairSPHAstro::eval_gradh()
 {
+  density_gradh<KERNEL, DIM>();
+  equation_of_state();
+  comm_stage_ = Stage::DENSITY;
+  comm->forward_comm(this);
+  force_pass<KERNEL, DIM, true, ENERGY, VISC, COND>();
+}
+
+/* ----------------------------------------------------------------------
+   force pass: accelerations, du/dt (heating and P dV), div v, over the half list.
+   Kernel gradients: GRADH: grad W(h_i) and grad W(h_j) with the grad-h factors and their
+   mean for the dissipative terms; otherwise grad W(h_ij), h_ij = (h_i + h_j)/2, for all
+   terms (Omega = 1). The dissipative terms are those of sph_astro_pair_terms.h.
+------------------------------------------------------------------------- */
+
+template <class KERNEL, int DIM, bool GRADH, bool ENERGY, bool VISC, bool COND>
+void PairSPHAstro::force_pass()
+{
   using K = Kernel<KERNEL, DIM>;
   double **x = atom->x;
   double **f = atom->f;
@@ -682,15 +617,11 @@ template <class KERNEL, int DIM, bool ENERGY, bool VISC, bool COND> void PairSPH
   const double *h = atom->dvector[state_.h];
   double *dudt = atom->dvector[state_.dudt];
   double **vest = atom->darray[state_.vest];
+  const double *uest = atom->dvector[state_.uest];
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
   const int newton_pair = force->newton_pair;
   const int nzero = newton_pair ? nall : nlocal;
-
-  density_gradh<KERNEL, DIM>();
-  equation_of_state();
-  comm_stage_ = Stage::DENSITY;
-  comm->forward_comm(this);
 
   const int inum = list->inum;
   const int *ilist = list->ilist;
@@ -702,7 +633,6 @@ template <class KERNEL, int DIM, bool ENERGY, bool VISC, bool COND> void PairSPH
   const double *alpha_atom = alpha_atom_;    // per-atom alpha of a switch, or null
   const double beta_factor = alpha > 0.0 ? beta / alpha : 0.0;
   const double alpha_u = cond_alpha_;
-  const double *uest = atom->dvector[state_.uest];
 
   for (int i = 0; i < nzero; i++) {
     vdotgradw_[i] = 0.0;
@@ -718,7 +648,7 @@ template <class KERNEL, int DIM, bool ENERGY, bool VISC, bool COND> void PairSPH
     const double hR2i = R2 * hi * hi;
     const double mi = rmass ? rmass[i] : mass[type[i]];
     const double rhoi = rho[i];
-    const double prhoi = pressure_[i] / (omega_[i] * rhoi * rhoi);
+    const double prhoi = pressure_[i] / ((GRADH ? omega_[i] : 1.0) * rhoi * rhoi);
     const double ci = soundspeed_[i];
     double fxi = 0.0, fyi = 0.0, fzi = 0.0, vgwi = 0.0, heati = 0.0;
     const int *jlist = firstneigh[i];
@@ -728,26 +658,34 @@ template <class KERNEL, int DIM, bool ENERGY, bool VISC, bool COND> void PairSPH
       const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
       const double r2 = dx * dx + dy * dy + dz * dz;
       const double hj = h[j];
-      const double hR2j = R2 * hj * hj;
-      if ((r2 >= hR2i && r2 >= hR2j) || r2 == 0.0) continue;
-      const double r = std::sqrt(r2);
-      const double rinv = 1.0 / r;
-      // (dW/dr)/r for h_i and h_j: grad_i W_ij(h) = dw * r_ij
-      const double dwi = r2 < hR2i ? normi * K::dw(r * hinvi) * rinv : 0.0;
-      const double hinvj = 1.0 / hj;
-      const double dwj =
-          r2 < hR2j ? sigma * inv_h_pow_dim<DIM>(hinvj) * hinvj * K::dw(r * hinvj) * rinv : 0.0;
+      const double hij = 0.5 * (hi + hj);
+      // (dW/dr)/r for h_i and h_j (GRADH) or h_ij: grad_i W_ij(h) = dw * r_ij; grad W(0) = 0
+      double dwi, dwj, r;
+      if (GRADH) {
+        const double hR2j = R2 * hj * hj;
+        if ((r2 >= hR2i && r2 >= hR2j) || r2 == 0.0) continue;
+        r = std::sqrt(r2);
+        const double rinv = 1.0 / r;
+        const double hinvj = 1.0 / hj;
+        dwi = r2 < hR2i ? normi * K::dw(r * hinvi) * rinv : 0.0;
+        dwj = r2 < hR2j ? sigma * inv_h_pow_dim<DIM>(hinvj) * hinvj * K::dw(r * hinvj) * rinv : 0.0;
+      } else {
+        if (r2 >= R2 * hij * hij || r2 == 0.0) continue;
+        r = std::sqrt(r2);
+        const double hinv = 1.0 / hij;
+        dwi = dwj = sigma * inv_h_pow_dim<DIM>(hinv) * hinv * K::dw(r * hinv) / r;
+      }
       const double dwbar = 0.5 * (dwi + dwj);
       const double mj = rmass ? rmass[j] : mass[type[j]];
       const double rhoj = rho[j];
-      const double prhoj = pressure_[j] / (omega_[j] * rhoj * rhoj);
+      const double prhoj = pressure_[j] / ((GRADH ? omega_[j] : 1.0) * rhoj * rhoj);
       const double dvx = vxi - vest[j][0], dvy = vyi - vest[j][1], dvz = vzi - vest[j][2];
       const double vdotr = dvx * dx + dvy * dy + dvz * dz;
       double visc = 0.0;
       if (VISC && vdotr < 0.0) {
         const double a = alpha_atom ? 0.5 * (alpha_atom[i] + alpha_atom[j]) : alpha;
         const double b = alpha_atom ? beta_factor * a : beta;
-        visc = viscosity_classic(vdotr, r2, 0.5 * (hi + hj), a, b, eps, 0.5 * (ci + soundspeed_[j]),
+        visc = viscosity_classic(vdotr, r2, hij, a, b, eps, 0.5 * (ci + soundspeed_[j]),
                                  0.5 * (rhoi + rhoj));
       }
       const double fpair = -mi * mj * (prhoi * dwi + prhoj * dwj + visc * dwbar);
@@ -756,7 +694,7 @@ template <class KERNEL, int DIM, bool ENERGY, bool VISC, bool COND> void PairSPH
       fzi += dz * fpair;
       vgwi += mj * vdotr * dwi;
       if (ENERGY && VISC) heati += 0.5 * mj * visc * vdotr * dwbar;
-      double cond = 0.0;    // conductivity flux times the mean dW/dr
+      double cond = 0.0;    // conductivity flux times the (mean) dW/dr
       if (COND) {
         cond = conductivity_flux(alpha_u, uest[i], uest[j], pressure_[i], pressure_[j],
                                  0.5 * (rhoi + rhoj)) *
@@ -783,8 +721,8 @@ template <class KERNEL, int DIM, bool ENERGY, bool VISC, bool COND> void PairSPH
     comm_stage_ = Stage::FORCE;
     comm->reverse_comm(this);
   }
-  for (int i = 0; i < nlocal; i++) divv_[i] = -vdotgradw_[i] / (omega_[i] * rho[i]);
-  if (ENERGY) finish_thermal_rates(true);
+  for (int i = 0; i < nlocal; i++) divv_[i] = -vdotgradw_[i] / ((GRADH ? omega_[i] : 1.0) * rho[i]);
+  if (ENERGY) finish_thermal_rates(GRADH);
 }
 
 template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()

@@ -107,6 +107,7 @@ class PairSPHAstro : public Pair {
   template <class KERNEL, int DIM, bool ENERGY, bool VISC, bool COND> void eval();
   template <class KERNEL, int DIM, bool ENERGY, bool VISC, bool COND> void eval_gradh();
   template <class KERNEL, int DIM> void density_gradh();
+  template <class KERNEL, int DIM, bool GRADH, bool ENERGY, bool VISC, bool COND> void force_pass();
   template <class KERNEL, int DIM> void dispatch_physics();
   template <class KERNEL> void dispatch_dimension();
   void equation_of_state();
