@@ -1,0 +1,190 @@
+#!/usr/bin/python3
+"""Compare the last frame of an SPH-ASTRO Sedov-Taylor dump with the self-similar solution.
+
+Usage (from anywhere; needs numpy and matplotlib, i.e. Debian's /usr/bin/python3)::
+
+    /usr/bin/python3 examples/sedov/analyse.py DUMPFILE [--log log.lammps] [--png out.png]
+        [--time T] [--E 1] [--rho0 1] [--gamma 1.6666667] [--pbg 1e-6] [--nbins 60]
+        [--assert 'rshock=0.03,l1rho=0.1,peak=2.5,energy=1e-3']
+
+The dump must be a LAMMPS text ``dump custom`` with the columns x, y, z, vx, vy, vz, rho,
+pressure and u (examples/sedov/in.sedov writes them); the blast is centred at the origin.
+The time defaults to the dump's ``ITEM: TIME``, else 0.1.  Printed, one figure a line:
+
+* the analytic shock radius R_s = xi0 (E t^2 / rho0)^(1/5) (tools/sphastro/sedov.py);
+* the shock radius from the SPH data, measured on the density averaged in ``nbins`` radial
+  bins over r < 1.2 R_s in two ways: ``r_half``, where the binned density falls through
+  (rho0 + peak) / 2 outside the peak (the centre of the smoothed jump; the HEADLINE shock
+  radius, asserted as ``rshock``), and ``r_peak``, the radius of the density maximum
+  (it trails the jump by about a smoothing length); each with its relative error in %;
+* the binned peak density against the strong-shock value (gamma + 1)/(gamma - 1) rho0 = 4;
+* the per-particle L1 errors of rho, radial velocity v_r and P over r < 1.2 R_s against
+  the Sedov solution at each particle's radius (as SWIFT reports L1(rho));
+* the kinetic + thermal energy of the particles in the dump (equal masses rho0 V_box / N)
+  against E + the background's thermal energy;
+* with ``--log``: the relative total-energy error of the run (compute sph/astro/global,
+  final and largest over the thermo lines), the number of particles held at the h cap
+  (f_hvar[4]) and the steps, particles and loop time.
+
+``--assert`` fails (exit 1) unless every listed figure is within its bound: ``rshock``
+(|relative error| of r_half), ``rpeak`` (|relative error| of r_peak), ``l1rho``, ``l1v``,
+``l1p`` (L1 errors), ``energy`` (|final relative energy error|, needs --log), ``edump``
+(|relative error| of the energy in the dump), ``capped`` (particles at the cap, needs
+--log; upper bounds) and ``peak`` (binned peak density: a LOWER bound).
+"""
+
+import argparse
+import math
+import os
+import re
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir,
+                                "tools"))
+
+from sphastro import sedov  # noqa: E402
+from sphastro.dump import read_last_frame  # noqa: E402
+
+_LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", re.M)
+
+
+def parse_log(path):
+    """Energy error, capped particles and run size from a LAMMPS log of in.sedov.
+
+    Reads the thermo blocks (columns ``c_sum[12]``, the relative energy error, and
+    ``f_hvar[4]``, the particles at the cap) and the ``Loop time`` line.  Returns a dict
+    (missing items are nan).
+    """
+    out = {"energy": math.nan, "energy_max": math.nan, "capped": math.nan,
+           "capped_max": math.nan, "steps": math.nan, "natoms": math.nan, "loop_s": math.nan,
+           "procs": math.nan}
+    with open(path, encoding="utf-8", errors="replace") as f:
+        lines = f.read().splitlines()
+    header = None
+    err, capped = [], []
+    for line in lines:
+        words = line.split()
+        if words[:1] == ["Step"] and "c_sum[12]" in words:
+            header = words
+            continue
+        if header is None:
+            continue
+        if len(words) != len(header):
+            header = None if line.startswith("Loop time") else header
+            continue
+        try:
+            row = [float(w) for w in words]
+        except ValueError:
+            continue
+        err.append(row[header.index("c_sum[12]")])
+        if "f_hvar[4]" in header:
+            capped.append(row[header.index("f_hvar[4]")])
+    if err:
+        out["energy"] = err[-1]
+        out["energy_max"] = max(abs(e) for e in err)
+    if capped:
+        out["capped"] = capped[-1]
+        out["capped_max"] = max(capped)
+    loops = _LOOP.findall("\n".join(lines))
+    if loops:
+        # the last loop is the SPH run (in.sedov has a 'run 0' before it)
+        t, procs, steps, natoms = loops[-1]
+        out.update(loop_s=float(t), procs=int(procs), steps=int(steps), natoms=int(natoms))
+    return out
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("dump", help="LAMMPS text dump custom file (the last frame is used)")
+    parser.add_argument("--log", default=None, help="LAMMPS log of the run (energy error, "
+                        "capped particles, steps)")
+    parser.add_argument("--time", type=float, default=None,
+                        help="time of the frame (default: the dump's TIME item, else 0.1)")
+    parser.add_argument("--E", type=float, default=1.0, help="blast energy (default 1)")
+    parser.add_argument("--rho0", type=float, default=1.0, help="ambient density (default 1)")
+    parser.add_argument("--gamma", type=float, default=5.0 / 3.0,
+                        help="ratio of specific heats (default 5/3)")
+    parser.add_argument("--pbg", type=float, default=1e-6,
+                        help="background pressure, for the energy budget (default 1e-6)")
+    parser.add_argument("--nbins", type=int, default=60,
+                        help="radial bins over r < 1.2 R_s for the shock measures (default 60)")
+    parser.add_argument("--png", default=None, help="write rho, v_r, P profiles to this PNG")
+    parser.add_argument("--assert", dest="bounds", default=None,
+                        help="fail (exit 1) unless every figure is within its bound, e.g. "
+                             "rshock=0.03,l1rho=0.1,peak=2.5,energy=1e-3 (see the docstring)")
+    args = parser.parse_args(argv)
+
+    frame = read_last_frame(args.dump)
+    t = args.time if args.time is not None else (frame.time if frame.time is not None else 0.1)
+    res = sedov.sedov_errors(frame, t, args.E, args.rho0, args.gamma, nbins=args.nbins)
+    box_volume = float((frame.box[:, 1] - frame.box[:, 0]).prod())
+    e_expected = args.E + args.pbg / (args.gamma - 1.0) * box_volume
+    e_dump_err = (res["e_particles"] - e_expected) / e_expected
+    rho_jump = (args.gamma + 1.0) / (args.gamma - 1.0) * args.rho0
+    nparticles = len(frame.columns["x"])
+
+    print(f"particles = {nparticles}, t = {t:g}, measured over r < 1.2 R_s: {res['n']} "
+          f"particles, bin width {res['bin_width']:.4g}")
+    print(f"R_s analytic = {res['rs']:.5f} (xi0 = {sedov.xi0(args.gamma):.5f})")
+    print(f"R_s SPH, half-height of the jump (headline) = {res['r_half']:.5f}: "
+          f"{100 * res['err_r_half']:+.2f} %")
+    print(f"R_s SPH, binned density peak = {res['r_peak']:.5f}: {100 * res['err_r_peak']:+.2f} %")
+    print(f"peak density (binned) = {res['rho_peak']:.4f} (strong shock {rho_jump:g}: "
+          f"{res['rho_peak'] / rho_jump:.3f} of it)")
+    print(f"L1(rho) = {res['rho']:.4e}")
+    print(f"L1(v_r) = {res['v']:.4e}")
+    print(f"L1(P) = {res['p']:.4e}")
+    print(f"energy in the dump (kinetic + thermal) = {res['e_particles']:.8g}, expected "
+          f"{e_expected:.8g}: relative error {e_dump_err:+.3e}")
+    log = None
+    if args.log:
+        log = parse_log(args.log)
+        print(f"relative energy error (log, final) = {log['energy']:+.3e}, largest |error| "
+              f"over the thermo lines = {log['energy_max']:.3e}")
+        print(f"particles at the h cap (final) = {log['capped']:g}, most at a thermo line = "
+              f"{log['capped_max']:g}")
+        print(f"run: {log['natoms']} particles, {log['steps']} steps, loop time "
+              f"{log['loop_s']:.2f} s on {log['procs']} procs")
+
+    if args.png:
+        sedov.plot_profiles(frame, t, args.png, args.E, args.rho0, args.gamma, nbins=args.nbins,
+                            title=f"{os.path.basename(args.dump)}: {nparticles} particles, "
+                                  f"t = {t:g}, step {frame.timestep}")
+        print(f"plot: {args.png}")
+
+    if args.bounds:
+        values = {"rshock": abs(res["err_r_half"]), "rpeak": abs(res["err_r_peak"]),
+                  "l1rho": res["rho"], "l1v": res["v"], "l1p": res["p"],
+                  "edump": abs(e_dump_err), "peak": res["rho_peak"]}
+        if log is not None:
+            values["energy"] = abs(log["energy"])
+            values["capped"] = log["capped"]
+        failed = []
+        for item in args.bounds.split(","):
+            if not item.strip():
+                continue
+            name, bound = item.split("=")
+            name = name.strip()
+            if name in ("energy", "capped") and log is None:
+                parser.error(f"--assert: '{name}' needs --log")
+            if name not in values:
+                parser.error(f"--assert: unknown figure '{name}' "
+                             f"({', '.join(sorted(values))})")
+            value, bound = values[name], float(bound)
+            if name == "peak":
+                ok = value >= bound
+                text = f"check {name} = {value:.4g} >= {bound:.4g}"
+            else:
+                ok = value <= bound
+                text = f"check {name} = {value:.4g} <= {bound:.4g}"
+            ok = ok and value == value          # nan fails
+            print(f"{text}: {'ok' if ok else 'FAILED'}")
+            if not ok:
+                failed.append(name)
+        if failed:
+            return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
