@@ -26,7 +26,6 @@ L1(switch) <= R L1(constant); --assert-constant / --assert-switch take analyse.p
 import argparse
 import os
 import re
-import shutil
 import subprocess
 import sys
 import time
@@ -38,24 +37,11 @@ sys.path.insert(0, os.path.join(ROOT, "tools"))
 
 import analyse  # noqa: E402  (examples/gresho/analyse.py)
 from sphastro.dump import read_last_frame  # noqa: E402
+from sphastro.runs import lammps_environment  # noqa: E402
 
 _LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", re.M)
 
 
-def lammps_environment():
-    """os.environ, plus build/env.sh's settings if ``lmp`` is not on PATH yet."""
-    env = dict(os.environ)
-    if shutil.which("lmp", path=env.get("PATH")):
-        return env
-    env_sh = os.path.join(os.environ.get("SPH_ASTRO_BUILD", os.path.join(ROOT, "build")),
-                          "env.sh")
-    if os.path.exists(env_sh):
-        out = subprocess.run(["bash", "-c", f'source "{env_sh}" >/dev/null && env -0'],
-                             check=True, capture_output=True).stdout
-        env = dict(item.split("=", 1) for item in out.decode().split("\0") if "=" in item)
-    if not shutil.which("lmp", path=env.get("PATH")):
-        sys.exit("error: lmp not found; source build/env.sh (or run tools/setup.sh) first")
-    return env
 
 
 def run_variant(name, lmp_vars, args, env):
