@@ -3,7 +3,7 @@
 # its wall time. Usage: examples/sod/run.sh [NP] [extra lmp args, e.g. -var nx 96]
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
-build=${SPH_ASTRO_BUILD:-$here/../../build}
+build=$(cd "${SPH_ASTRO_BUILD:-$here/../../build}" && pwd)
 # shellcheck disable=SC1091
 source "$build/env.sh"
 np=${1:-1}; shift || true
