@@ -6,6 +6,8 @@
 
 #include "compute.h"
 #include "fix.h"
+#include "force.h"
+#include "pair.h"
 
 #include <cmath>
 #include <cstdio>
@@ -249,6 +251,53 @@ TEST(FixSPHAstroSwitch, AlphaComesBackFromARestart) {
     EXPECT_EQ(alpha[id], a) << "atom " << id;
   }
   std::remove(restart.c_str());
+}
+
+// Balsara factor of the central particles: ~0 in rigid rotation, ~1 in uniform
+// compression
+static double central_balsara(const std::vector<std::string> &velocity,
+                              bool gradh) {
+  auto lmp = open_lammps();
+  gas(lmp, "ball", 6,
+      "sph/astro kernel m4 eos ideal $(5.0/3.0) viscosity classic 1.0 2.0 "
+      "balsara yes",
+      "sph/astro"); // disordered lattice: no help from symmetry
+  commands(lmp, velocity);
+  commands(lmp, {"velocity all set v_vx v_vy v_vz"});
+  if (gradh)
+    commands(lmp, {"fix hvar all sph/astro/h iterate margin 2.0"});
+  commands(lmp, {"run 0"});
+  int ncol;
+  auto *f =
+      static_cast<double *>(lmp->force->pair->extract_peratom("balsara", ncol));
+  EXPECT_NE(f, nullptr);
+  if (!f)
+    return -1.0;
+  double sum = 0.0;
+  int n = 0;
+  for (int i = 0; i < lmp->atom->nlocal; i++) {
+    const double *x = lmp->atom->x[i];
+    if (x[0] * x[0] + x[1] * x[1] + x[2] * x[2] < 1.0) {
+      sum += f[i];
+      n++;
+    }
+  }
+  return n ? sum / n : -1.0;
+}
+
+TEST(PairSPHAstro, BalsaraFactorSeparatesShearFromCompression) {
+  for (bool gradh : {false, true}) {
+    const double rotation = central_balsara(
+        {"variable vx atom -y", "variable vy atom x", "variable vz atom 0.0"},
+        gradh);
+    const double compression = central_balsara(
+        {"variable vx atom -x", "variable vy atom -y", "variable vz atom -z"},
+        gradh);
+    printf("Balsara f at the centre (%s): rotation %.3e, compression %.4f\n",
+           gradh ? "grad-h" : "mean h", rotation, compression);
+    EXPECT_LT(rotation, 0.05);
+    EXPECT_GT(compression, 0.95);
+  }
 }
 
 static double energy_error_conductivity(double dt) {

@@ -50,8 +50,8 @@ PairSPHAstro::PairSPHAstro(LAMMPS *lmp) : Pair(lmp)
   restartinfo = 1;
   one_coeff = 1;
   manybody_flag = 1;    // forces depend on densities of both partners
-  comm_forward = 10;    // rho, P, c_s, vest[3]; h, Omega (grad-h); alpha (switch); u (cond.)
-  comm_reverse = 2;     // density pass: rho, nneigh; force pass: dudt, sum v.gradW
+  comm_forward = 11;    // rho, P, c_s, vest[3]; h, Omega; alpha; u (cond.); Balsara f
+  comm_reverse = 4;     // rho, nneigh | dudt, sum v.gradW | div and curl sums (Balsara)
 }
 
 PairSPHAstro::~PairSPHAstro()
@@ -63,6 +63,9 @@ PairSPHAstro::~PairSPHAstro()
   memory->destroy(divv_);
   memory->destroy(nneigh_);
   memory->destroy(omega_);
+  memory->destroy(dcurl_);
+  memory->destroy(curlv_);
+  memory->destroy(balsara_);
   memory->destroy(hcap_type_);
   if (allocated) {
     memory->destroy(setflag);
@@ -83,8 +86,9 @@ void PairSPHAstro::allocate()
 
 void PairSPHAstro::grow_work_arrays()
 {
-  if (atom->nmax <= nmax_) return;
-  nmax_ = atom->nmax;
+  // (re)allocate also when balsara was switched on after the arrays were made
+  if (atom->nmax <= nmax_ && (!balsara_on_ || balsara_)) return;
+  nmax_ = MAX(nmax_, atom->nmax);
   memory->destroy(pressure_);
   memory->destroy(soundspeed_);
   memory->destroy(vdotgradw_);
@@ -92,6 +96,14 @@ void PairSPHAstro::grow_work_arrays()
   memory->destroy(nneigh_);
   memory->destroy(omega_);
   memory->create(omega_, nmax_, "pair:sph/astro:omega");
+  memory->destroy(dcurl_);
+  memory->destroy(curlv_);
+  memory->destroy(balsara_);
+  if (balsara_on_) {
+    memory->create(dcurl_, nmax_, 4, "pair:sph/astro:dcurl");
+    memory->create(curlv_, nmax_, "pair:sph/astro:curlv");
+    memory->create(balsara_, nmax_, "pair:sph/astro:balsara");
+  }
   memory->create(pressure_, nmax_, "pair:sph/astro:pressure");
   memory->create(soundspeed_, nmax_, "pair:sph/astro:soundspeed");
   memory->create(vdotgradw_, nmax_, "pair:sph/astro:vdotgradw");
@@ -114,6 +126,7 @@ void PairSPHAstro::settings(int narg, char **arg)
   visc_beta_ = 2.0;
   visc_eps_ = 0.01;
   cond_alpha_ = 0.0;
+  balsara_on_ = false;
   int iarg = 0;
   while (iarg < narg) {
     const std::string key = arg[iarg];
@@ -188,6 +201,10 @@ void PairSPHAstro::settings(int narg, char **arg)
                    "pair_style sph/astro: unknown viscosity '{}'; allowed: classic ALPHA BETA, "
                    "none",
                    form);
+    } else if (key == "balsara") {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_style sph/astro balsara", error);
+      balsara_on_ = utils::logical(FLERR, arg[iarg + 1], false, lmp) == 1;
+      iarg += 2;
     } else if (key == "conductivity") {
       if (iarg + 2 > narg)
         utils::missing_cmd_args(FLERR, "pair_style sph/astro conductivity", error);
@@ -205,10 +222,12 @@ void PairSPHAstro::settings(int narg, char **arg)
     } else
       error->all(FLERR,
                  "pair_style sph/astro: unknown keyword '{}'; allowed: kernel, eos, viscosity, "
-                 "conductivity, epsilon",
+                 "balsara, conductivity, epsilon",
                  key);
   }
   kernel_radius_ = SPHAstro::kernel_radius(kernel_);
+  if (balsara_on_ && !visc_on_)
+    error->all(FLERR, "pair_style sph/astro: balsara yes needs viscosity classic");
 }
 
 /* ----------------------------------------------------------------------
@@ -401,7 +420,7 @@ void PairSPHAstro::finish_thermal_rates(bool gradh)
   }
 }
 
-template <class KERNEL, int DIM, bool ENERGY, bool VISC, bool COND> void PairSPHAstro::eval()
+template <class KERNEL, int DIM, bool ENERGY, int VISC, bool COND> void PairSPHAstro::eval()
 {
   using K = Kernel<KERNEL, DIM>;
   double **x = atom->x;
@@ -467,9 +486,9 @@ template <class KERNEL, int DIM, bool ENERGY, bool VISC, bool COND> void PairSPH
     comm->reverse_comm(this);
   }
   equation_of_state();
+  if (VISC == BALSARA) balsara_factors<KERNEL, DIM, false>();
   comm_stage_ = Stage::DENSITY;
   comm->forward_comm(this);
-
   force_pass<KERNEL, DIM, false, ENERGY, VISC, COND>();
 }
 
@@ -588,10 +607,11 @@ template <class KERNEL, int DIM> void PairSPHAstro::density_gradh()
   hfix_->record(iter_sum, iter_max, inum, failures, capped);
 }
 
-template <class KERNEL, int DIM, bool ENERGY, bool VISC, bool COND> void PairSPHAstro::eval_gradh()
+template <class KERNEL, int DIM, bool ENERGY, int VISC, bool COND> void PairSPHAstro::eval_gradh()
 {
   density_gradh<KERNEL, DIM>();
   equation_of_state();
+  if (VISC == BALSARA) balsara_factors<KERNEL, DIM, true>();
   comm_stage_ = Stage::DENSITY;
   comm->forward_comm(this);
   force_pass<KERNEL, DIM, true, ENERGY, VISC, COND>();
@@ -604,7 +624,7 @@ template <class KERNEL, int DIM, bool ENERGY, bool VISC, bool COND> void PairSPH
    terms (Omega = 1). The dissipative terms are those of sph_astro_pair_terms.h.
 ------------------------------------------------------------------------- */
 
-template <class KERNEL, int DIM, bool GRADH, bool ENERGY, bool VISC, bool COND>
+template <class KERNEL, int DIM, bool GRADH, bool ENERGY, int VISC, bool COND>
 void PairSPHAstro::force_pass()
 {
   using K = Kernel<KERNEL, DIM>;
@@ -685,8 +705,9 @@ void PairSPHAstro::force_pass()
       if (VISC && vdotr < 0.0) {
         const double a = alpha_atom ? 0.5 * (alpha_atom[i] + alpha_atom[j]) : alpha;
         const double b = alpha_atom ? beta_factor * a : beta;
+        const double shear = VISC == BALSARA ? 0.5 * (balsara_[i] + balsara_[j]) : 1.0;
         visc = viscosity_classic(vdotr, r2, hij, a, b, eps, 0.5 * (ci + soundspeed_[j]),
-                                 0.5 * (rhoi + rhoj));
+                                 0.5 * (rhoi + rhoj), shear);
       }
       const double fpair = -mi * mj * (prhoi * dwi + prhoj * dwj + visc * dwbar);
       fxi += dx * fpair;
@@ -731,6 +752,7 @@ template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
   const bool energy = eos_.uses_energy();
   const bool cond = energy && cond_alpha_ > 0.0;
   const bool gradh = hmode_ == HMode::GRADH;
+  const int visc = !visc_on_ ? NO_VISCOSITY : (balsara_on_ ? BALSARA : CLASSIC);
 #define SPH_ASTRO_EVAL(E, V, C)           \
   {                                       \
     if (gradh)                            \
@@ -739,13 +761,92 @@ template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
       eval<KERNEL, DIM, E, V, C>();       \
     return;                               \
   }
-  if (energy && visc_on_ && cond) SPH_ASTRO_EVAL(true, true, true);
-  if (energy && visc_on_) SPH_ASTRO_EVAL(true, true, false);
-  if (energy && cond) SPH_ASTRO_EVAL(true, false, true);
-  if (energy) SPH_ASTRO_EVAL(true, false, false);
-  if (visc_on_) SPH_ASTRO_EVAL(false, true, false);
-  SPH_ASTRO_EVAL(false, false, false);
+#define SPH_ASTRO_EVAL_VISC(E, C)                       \
+  {                                                     \
+    if (visc == BALSARA) SPH_ASTRO_EVAL(E, BALSARA, C); \
+    if (visc == CLASSIC) SPH_ASTRO_EVAL(E, CLASSIC, C); \
+    SPH_ASTRO_EVAL(E, NO_VISCOSITY, C);                 \
+  }
+  if (cond) SPH_ASTRO_EVAL_VISC(true, true);
+  if (energy) SPH_ASTRO_EVAL_VISC(true, false);
+  SPH_ASTRO_EVAL_VISC(false, false);
+#undef SPH_ASTRO_EVAL_VISC
 #undef SPH_ASTRO_EVAL
+}
+
+/* ----------------------------------------------------------------------
+   Balsara (1995) shear limiter from this step's div v and curl v (seed 000):
+     f_i = |div v|_i / (|div v|_i + |curl v|_i + 0.0001 c_i / h_i)
+     div v_i = -1/(Omega_i rho_i) sum_j m_j v_ij . grad_i W_ij
+     curl v_i = 1/(Omega_i rho_i) sum_j m_j v_ij x grad_i W_ij      (Omega = 1 without GRADH)
+   with the predicted velocities, over the full list and W(h_i) (GRADH) or the half list
+   and W(h_ij). Costs one neighbour loop and two communications when balsara is on.
+------------------------------------------------------------------------- */
+
+template <class KERNEL, int DIM, bool GRADH> void PairSPHAstro::balsara_factors()
+{
+  using K = Kernel<KERNEL, DIM>;
+  double **x = atom->x;
+  const int *type = atom->type;
+  const double *rmass = atom->rmass;
+  const double *mass = atom->mass;
+  const double *rho = atom->dvector[state_.rho];
+  const double *h = atom->dvector[state_.h];
+  double **vest = atom->darray[state_.vest];
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  const int newton_pair = force->newton_pair;
+  const double sigma = K::sigma();
+  const double R2 = K::radius * K::radius;
+
+  comm_stage_ = Stage::VELOCITY;    // the ghosts' predicted velocities of this step
+  comm->forward_comm(this, 3);
+
+  NeighList *nl = GRADH ? listfull_ : list;
+  const int nzero = (!GRADH && newton_pair) ? nall : nlocal;
+  for (int i = 0; i < nzero; i++) dcurl_[i][0] = dcurl_[i][1] = dcurl_[i][2] = dcurl_[i][3] = 0.0;
+  for (int ii = 0; ii < nl->inum; ii++) {
+    const int i = nl->ilist[ii];
+    const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
+    const double hi = h[i];
+    const double mi = rmass ? rmass[i] : mass[type[i]];
+    const int *jlist = nl->firstneigh[i];
+    const int jnum = nl->numneigh[i];
+    double acc[4] = {0.0, 0.0, 0.0, 0.0};    // sum v.gradW, sum v x gradW
+    for (int jj = 0; jj < jnum; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      const double hk = GRADH ? hi : 0.5 * (hi + h[j]);
+      if (r2 >= R2 * hk * hk || r2 == 0.0) continue;
+      const double r = std::sqrt(r2);
+      const double hinv = 1.0 / hk;
+      const double dw = sigma * inv_h_pow_dim<DIM>(hinv) * hinv * K::dw(r * hinv) / r;
+      const double mj = rmass ? rmass[j] : mass[type[j]];
+      const double dvx = vest[i][0] - vest[j][0], dvy = vest[i][1] - vest[j][1],
+                   dvz = vest[i][2] - vest[j][2];
+      const double pair[4] = {(dvx * dx + dvy * dy + dvz * dz) * dw, (dvy * dz - dvz * dy) * dw,
+                              (dvz * dx - dvx * dz) * dw, (dvx * dy - dvy * dx) * dw};
+      for (int k = 0; k < 4; k++) acc[k] += mj * pair[k];
+      // the same pair seen from j: v_ji . grad_j W_ji = v_ij . grad_i W_ij, likewise for x
+      if (!GRADH && (newton_pair || j < nlocal))
+        for (int k = 0; k < 4; k++) dcurl_[j][k] += mi * pair[k];
+    }
+    for (int k = 0; k < 4; k++) dcurl_[i][k] += acc[k];
+  }
+  if (!GRADH && newton_pair) {
+    comm_stage_ = Stage::CURL;
+    comm->reverse_comm(this, 4);
+  }
+  for (int i = 0; i < nlocal; i++) {
+    const double norm = 1.0 / ((GRADH ? omega_[i] : 1.0) * rho[i]);
+    const double divv = -dcurl_[i][0] * norm;
+    const double curlv = norm *
+        std::sqrt(dcurl_[i][1] * dcurl_[i][1] + dcurl_[i][2] * dcurl_[i][2] +
+                  dcurl_[i][3] * dcurl_[i][3]);
+    curlv_[i] = curlv;
+    balsara_[i] = balsara_factor(divv, curlv, soundspeed_[i], h[i]);
+  }
 }
 
 template <class KERNEL> void PairSPHAstro::dispatch_dimension()
@@ -792,6 +893,14 @@ int PairSPHAstro::pack_forward_comm(int n, int *list, double *buf, int /*pbc_fla
     for (int k = 0; k < n; k++) buf[m++] = h[list[k]];
     return m;
   }
+  if (comm_stage_ == Stage::VELOCITY) {
+    for (int k = 0; k < n; k++) {
+      buf[m++] = vest[list[k]][0];
+      buf[m++] = vest[list[k]][1];
+      buf[m++] = vest[list[k]][2];
+    }
+    return m;
+  }
   const bool gradh = hmode_ == HMode::GRADH;
   const bool cond = cond_alpha_ > 0.0 && eos_.uses_energy();
   const double *uest = atom->dvector[state_.uest];
@@ -809,6 +918,7 @@ int PairSPHAstro::pack_forward_comm(int n, int *list, double *buf, int /*pbc_fla
     }
     if (alpha_atom_) buf[m++] = alpha_atom_[j];
     if (cond) buf[m++] = uest[j];
+    if (balsara_on_) buf[m++] = balsara_[j];
   }
   return m;
 }
@@ -821,6 +931,14 @@ void PairSPHAstro::unpack_forward_comm(int n, int first, double *buf)
   int m = 0;
   if (comm_stage_ == Stage::SMOOTHING_LENGTH) {
     for (int i = first; i < first + n; i++) h[i] = buf[m++];
+    return;
+  }
+  if (comm_stage_ == Stage::VELOCITY) {
+    for (int i = first; i < first + n; i++) {
+      vest[i][0] = buf[m++];
+      vest[i][1] = buf[m++];
+      vest[i][2] = buf[m++];
+    }
     return;
   }
   const bool gradh = hmode_ == HMode::GRADH;
@@ -839,12 +957,18 @@ void PairSPHAstro::unpack_forward_comm(int n, int first, double *buf)
     }
     if (alpha_atom_) alpha_atom_[i] = buf[m++];
     if (cond) uest[i] = buf[m++];
+    if (balsara_on_) balsara_[i] = buf[m++];
   }
 }
 
 int PairSPHAstro::pack_reverse_comm(int n, int first, double *buf)
 {
   int m = 0;
+  if (comm_stage_ == Stage::CURL) {
+    for (int i = first; i < first + n; i++)
+      for (int k = 0; k < 4; k++) buf[m++] = dcurl_[i][k];
+    return m;
+  }
   if (comm_stage_ == Stage::DENSITY) {
     const double *rho = atom->dvector[state_.rho];
     for (int i = first; i < first + n; i++) {
@@ -864,6 +988,11 @@ int PairSPHAstro::pack_reverse_comm(int n, int first, double *buf)
 void PairSPHAstro::unpack_reverse_comm(int n, int *list, double *buf)
 {
   int m = 0;
+  if (comm_stage_ == Stage::CURL) {
+    for (int k = 0; k < n; k++)
+      for (int c = 0; c < 4; c++) dcurl_[list[k]][c] += buf[m++];
+    return;
+  }
   if (comm_stage_ == Stage::DENSITY) {
     double *rho = atom->dvector[state_.rho];
     for (int k = 0; k < n; k++) {
@@ -903,7 +1032,8 @@ void PairSPHAstro::read_restart(FILE *fp)
 
 void PairSPHAstro::write_restart_settings(FILE *fp)
 {
-  int ival[3] = {static_cast<int>(kernel_), static_cast<int>(eos_.type), visc_on_ ? 1 : 0};
+  int ival[3] = {static_cast<int>(kernel_), static_cast<int>(eos_.type),
+                 (visc_on_ ? 1 : 0) + (balsara_on_ ? 2 : 0)};
   double dval[7] = {eos_.gamma, eos_.cs, eos_.K, visc_alpha_, visc_beta_, visc_eps_, cond_alpha_};
   fwrite(ival, sizeof(int), 3, fp);
   fwrite(dval, sizeof(double), 7, fp);
@@ -921,7 +1051,8 @@ void PairSPHAstro::read_restart_settings(FILE *fp)
   MPI_Bcast(dval, 7, MPI_DOUBLE, 0, world);
   kernel_ = static_cast<KernelType>(ival[0]);
   eos_.type = static_cast<EOSType>(ival[1]);
-  visc_on_ = ival[2] != 0;
+  visc_on_ = (ival[2] & 1) != 0;
+  balsara_on_ = (ival[2] & 2) != 0;
   eos_.gamma = dval[0];
   eos_.cs = dval[1];
   eos_.K = dval[2];
@@ -951,6 +1082,8 @@ void *PairSPHAstro::extract_peratom(const char *name, int &ncol)
   if (strcmp(name, "divv") == 0) return (void *) divv_;
   if (strcmp(name, "nneigh") == 0) return (void *) nneigh_;
   if (strcmp(name, "omega") == 0) return (void *) omega_;
+  if (strcmp(name, "curlv") == 0) return (void *) (balsara_on_ ? curlv_ : nullptr);
+  if (strcmp(name, "balsara") == 0) return (void *) (balsara_on_ ? balsara_ : nullptr);
   // non-null when omega_ holds grad-h factors (variable h by iteration)
   if (strcmp(name, "omega_valid") == 0) return hmode_ == HMode::GRADH ? (void *) omega_ : nullptr;
   return nullptr;

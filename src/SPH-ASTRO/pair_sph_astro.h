@@ -65,6 +65,7 @@ class PairSPHAstro : public Pair {
   bool visc_on_ = true;
   double visc_alpha_ = 1.0, visc_beta_ = 2.0, visc_eps_ = 0.01;
   double cond_alpha_ = 0.0;    // artificial conductivity alpha_u (0: off)
+  bool balsara_on_ = false;    // Balsara shear limiter of the viscosity
 
   // per-particle viscosity alpha of fix sph/astro/switch (owned + ghost), null without it;
   // beta follows as (beta / alpha) x alpha_i
@@ -95,19 +96,24 @@ class PairSPHAstro : public Pair {
   double *divv_ = nullptr;          // div v
   double *nneigh_ = nullptr;        // neighbours inside the kernel support
   double *omega_ = nullptr;         // grad-h factor Omega (1 without GRADH)
+  double **dcurl_ = nullptr;        // Balsara: sum_j m_j v_ij . grad W, sum_j m_j v_ij x grad W
+  double *curlv_ = nullptr;         // |curl v|
+  double *balsara_ = nullptr;       // Balsara factor f of this step
 
   bigint computed_step_ = -1;
   int computed_nlocal_ = -1;
 
-  enum class Stage { DENSITY, FORCE, SMOOTHING_LENGTH };
+  enum class Stage { DENSITY, FORCE, SMOOTHING_LENGTH, VELOCITY, CURL };
   Stage comm_stage_ = Stage::DENSITY;
 
   void allocate();
   void grow_work_arrays();
-  template <class KERNEL, int DIM, bool ENERGY, bool VISC, bool COND> void eval();
-  template <class KERNEL, int DIM, bool ENERGY, bool VISC, bool COND> void eval_gradh();
+  enum ViscosityForm { NO_VISCOSITY = 0, CLASSIC = 1, BALSARA = 2 };
+  template <class KERNEL, int DIM, bool ENERGY, int VISC, bool COND> void eval();
+  template <class KERNEL, int DIM, bool ENERGY, int VISC, bool COND> void eval_gradh();
+  template <class KERNEL, int DIM, bool GRADH> void balsara_factors();
   template <class KERNEL, int DIM> void density_gradh();
-  template <class KERNEL, int DIM, bool GRADH, bool ENERGY, bool VISC, bool COND> void force_pass();
+  template <class KERNEL, int DIM, bool GRADH, bool ENERGY, int VISC, bool COND> void force_pass();
   template <class KERNEL, int DIM> void dispatch_physics();
   template <class KERNEL> void dispatch_dimension();
   void equation_of_state();

@@ -15,12 +15,22 @@ namespace SPHAstro {
 // Classic artificial viscosity (Monaghan 1992; seed 000 "standard formulation"):
 //   Pi_ij = (-alpha c_ij mu_ij + beta mu_ij^2) / rho_ij  for v_ij . r_ij < 0, else 0
 //   mu_ij = h_ij v_ij . r_ij / (r_ij^2 + eps h_ij^2), c_ij, rho_ij the pair means
+// With the Balsara (1995) shear limiter mu_ij is multiplied by shear = (f_i + f_j)/2 (seed 000).
 inline double viscosity_classic(double vdotr, double r2, double hij, double alpha, double beta,
-                                double eps, double cbar, double rhobar)
+                                double eps, double cbar, double rhobar, double shear = 1.0)
 {
   if (vdotr >= 0.0) return 0.0;
-  const double mu = hij * vdotr / (r2 + eps * hij * hij);
+  const double mu = shear * hij * vdotr / (r2 + eps * hij * hij);
   return (-alpha * cbar * mu + beta * mu * mu) / rhobar;
+}
+
+// Balsara factor f_i = |div v| / (|div v| + |curl v| + 0.0001 c / h)   (seed 000, "Balsara
+// viscosity"): 1 in pure compression, 0 in pure shear
+inline double balsara_factor(double divv, double curlv, double cs, double h)
+{
+  const double d = std::fabs(divv);
+  const double denom = d + std::fabs(curlv) + 1e-4 * cs / h;
+  return denom > 0.0 ? d / denom : 1.0;
 }
 
 // Artificial conductivity (Price 2008, J. Comput. Phys. 227, 10040, eqs. 28 and 30):
