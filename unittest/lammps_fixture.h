@@ -28,9 +28,9 @@ namespace sph_astro_test {
 // deleted at the end of its scope, also when a test fails by an exception:
 // LAMMPS unloads the process-wide plugin list when an instance is deleted, so
 // instances must not leak
-inline std::unique_ptr<LAMMPS_NS::LAMMPS> open_lammps() {
-  const char *args[] = {"sph_astro_test", "-log", "none",
-                        "-screen",        "none", "-nocite"};
+inline std::unique_ptr<LAMMPS_NS::LAMMPS> open_lammps()
+{
+  const char *args[] = {"sph_astro_test", "-log", "none", "-screen", "none", "-nocite"};
   std::unique_ptr<LAMMPS_NS::LAMMPS> lmp(
       new LAMMPS_NS::LAMMPS(6, const_cast<char **>(args), MPI_COMM_WORLD));
   lmp->input->one("plugin load " SPH_ASTRO_PLUGIN);
@@ -38,14 +38,14 @@ inline std::unique_ptr<LAMMPS_NS::LAMMPS> open_lammps() {
 }
 
 inline void commands(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp,
-                     const std::vector<std::string> &lines) {
-  for (const auto &line : lines)
-    lmp->input->one(line);
+                     const std::vector<std::string> &lines)
+{
+  for (const auto &line : lines) lmp->input->one(line);
 }
 
 // the message of the LAMMPS error a command raises, "" if none
-inline std::string error_of(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp,
-                            const std::string &line) {
+inline std::string error_of(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp, const std::string &line)
+{
   try {
     lmp->input->one(line);
   } catch (LAMMPS_NS::LAMMPSException &e) {
@@ -57,73 +57,70 @@ inline std::string error_of(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp,
 // fcc lattice constant 1, mass 0.25 -> rho = 1; h = hfact (m/rho)^(1/3)
 // shape "box": periodic cube of n cells; "ball": sphere of radius n/2 cells in
 // vacuum full-precision number for an input line
-inline std::string num(double value) {
+inline std::string num(double value)
+{
   char buf[32];
   snprintf(buf, sizeof(buf), "%.17g", value);
   return buf;
 }
 
-inline void gas(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp,
-                const std::string &shape, int n, const std::string &pair,
-                const std::string &fix, double u = 1.0, double jitter = 0.04) {
+inline void gas(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp, const std::string &shape, int n,
+                const std::string &pair, const std::string &fix, double u = 1.0,
+                double jitter = 0.04)
+{
   const double hfact = 1.2;
   const double h = hfact * std::cbrt(0.25);
-  commands(lmp, {"units lj", "atom_style atomic",
-                 "atom_modify map array sort 0 0.0"});
+  commands(lmp, {"units lj", "atom_style atomic", "atom_modify map array sort 0 0.0"});
   if (shape == "box") {
-    commands(lmp, {"boundary p p p", "lattice fcc 4.0",
-                   "region box block 0 " + std::to_string(n) + " 0 " +
-                       std::to_string(n) + " 0 " + std::to_string(n),
-                   "create_box 1 box", "create_atoms 1 box"});
+    commands(lmp,
+             {"boundary p p p", "lattice fcc 4.0",
+              "region box block 0 " + std::to_string(n) + " 0 " + std::to_string(n) + " 0 " +
+                  std::to_string(n),
+              "create_box 1 box", "create_atoms 1 box"});
   } else {
     const double r = 0.5 * n;
     commands(lmp,
              {"boundary s s s", "lattice fcc 4.0",
-              "region box block " + std::to_string(-r - 1) + " " +
-                  std::to_string(r + 1) + " " + std::to_string(-r - 1) + " " +
-                  std::to_string(r + 1) + " " + std::to_string(-r - 1) + " " +
-                  std::to_string(r + 1),
-              "create_box 1 box",
-              "region ball sphere 0 0 0 " + std::to_string(r) + " units box",
+              "region box block " + std::to_string(-r - 1) + " " + std::to_string(r + 1) + " " +
+                  std::to_string(-r - 1) + " " + std::to_string(r + 1) + " " +
+                  std::to_string(-r - 1) + " " + std::to_string(r + 1),
+              "create_box 1 box", "region ball sphere 0 0 0 " + std::to_string(r) + " units box",
               "create_atoms 1 region ball"});
   }
   if (jitter > 0.0)
-    commands(lmp, {"displace_atoms all random " + num(jitter) + " " +
-                   num(jitter) + " " + num(jitter) + " 4711 units box"});
+    commands(lmp,
+             {"displace_atoms all random " + num(jitter) + " " + num(jitter) + " " + num(jitter) +
+              " 4711 units box"});
   commands(lmp,
-           {"mass 1 0.25", "velocity all create 0.001 8675309 dist gaussian",
-            "pair_style " + pair, "pair_coeff * *", "fix gas all " + fix,
-            "set group all d_h " + num(h),
+           {"mass 1 0.25", "velocity all create 0.001 8675309 dist gaussian", "pair_style " + pair,
+            "pair_coeff * *", "fix gas all " + fix, "set group all d_h " + num(h),
             "variable urand atom " + num(u) + "*(1.0+0.2*random(-1,1,991))",
             "set group all d_u v_urand", "neighbor " + num(0.3 * h) + " bin",
-            "neigh_modify every 1 delay 0 check yes",
-            "compute sum all sph/astro/global",
+            "neigh_modify every 1 delay 0 check yes", "compute sum all sph/astro/global",
             "thermo_style custom step c_sum[11]", "timestep 0.002"});
 }
 
 // global vector of a compute, as last evaluated (thermo evaluates it on the
 // last step)
-inline std::vector<double>
-global_vector(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp, const char *id,
-              int n) {
+inline std::vector<double> global_vector(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp,
+                                         const char *id, int n)
+{
   auto *vec = static_cast<double *>(
       lammps_extract_compute(lmp.get(), id, LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR));
-  if (!vec)
-    return {};
+  if (!vec) return {};
   return std::vector<double>(vec, vec + n);
 }
 
 // per-atom double custom property or x (unwrapped)/v/f component by atom ID
 // (single rank)
-inline std::map<int, double>
-per_atom(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp, const std::string &what,
-         int col = 0) {
+inline std::map<int, double> per_atom(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp,
+                                      const std::string &what, int col = 0)
+{
   std::map<int, double> out;
   auto *atom = lmp->atom;
   for (int i = 0; i < atom->nlocal; i++) {
     double value;
-    if (what ==
-        "x") { // unwrapped: runs may re-neighbour (and wrap) at different steps
+    if (what == "x") {    // unwrapped: runs may re-neighbour (and wrap) at different steps
       double unwrap[3];
       lmp->domain->unmap(atom->x[i], atom->image[i], unwrap);
       value = unwrap[col];
@@ -143,6 +140,6 @@ per_atom(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp, const std::string &what,
   return out;
 }
 
-} // namespace sph_astro_test
+}    // namespace sph_astro_test
 
 #endif

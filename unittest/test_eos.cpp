@@ -9,7 +9,8 @@
 
 using namespace SPHAstro;
 
-TEST(EOS, IdealGas) {
+TEST(EOS, IdealGas)
+{
   EOS eos;
   eos.type = EOSType::IDEAL;
   eos.gamma = 5.0 / 3.0;
@@ -29,18 +30,20 @@ TEST(EOS, IdealGas) {
   EXPECT_EQ(c, 0.0);
 }
 
-TEST(EOS, Isothermal) {
+TEST(EOS, Isothermal)
+{
   EOS eos;
   eos.type = EOSType::ISOTHERMAL;
   eos.cs = 0.5;
   double P, c;
-  eos.pressure_soundspeed(2.0, 123.0, P, c); // u does not enter
+  eos.pressure_soundspeed(2.0, 123.0, P, c);    // u does not enter
   EXPECT_DOUBLE_EQ(P, 0.5);
   EXPECT_DOUBLE_EQ(c, 0.5);
   EXPECT_FALSE(eos.uses_energy());
 }
 
-TEST(EOS, Polytropic) {
+TEST(EOS, Polytropic)
+{
   // toy star (seed 001): P = k rho^(1+1/n), n = 1 -> gamma = 2
   EOS eos;
   eos.type = EOSType::POLYTROPIC;

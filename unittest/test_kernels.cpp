@@ -11,13 +11,13 @@
 using namespace SPHAstro;
 
 namespace {
-const KernelType all_kernels[] = {KernelType::CUBIC, KernelType::QUINTIC,
-                                  KernelType::WENDLAND_C2,
+const KernelType all_kernels[] = {KernelType::CUBIC, KernelType::QUINTIC, KernelType::WENDLAND_C2,
                                   KernelType::WENDLAND_C4};
 
 // integral over d-dimensional space of a radial function: surface area of the
 // unit sphere times r^(d-1), by composite Simpson on [0, R h] with n intervals
-double radial_integral(KernelType k, int dim, double h, int n) {
+double radial_integral(KernelType k, int dim, double h, int n)
+{
   const double R = kernel_radius(k) * h;
   const double surface = dim == 1 ? 2.0 : (dim == 2 ? 2.0 * M_PI : 4.0 * M_PI);
   const double dr = R / n;
@@ -29,12 +29,12 @@ double radial_integral(KernelType k, int dim, double h, int n) {
   }
   return surface * sum * dr / 3.0;
 }
-} // namespace
+}    // namespace
 
-class KernelTest
-    : public ::testing::TestWithParam<std::tuple<KernelType, int>> {};
+class KernelTest : public ::testing::TestWithParam<std::tuple<KernelType, int>> {};
 
-TEST_P(KernelTest, Normalised) {
+TEST_P(KernelTest, Normalised)
+{
   const auto [k, dim] = GetParam();
   for (double h : {0.1, 1.0, 3.7}) {
     EXPECT_NEAR(radial_integral(k, dim, h, 20000), 1.0, 1e-9)
@@ -42,10 +42,11 @@ TEST_P(KernelTest, Normalised) {
   }
 }
 
-TEST_P(KernelTest, CompactSupportAndPositive) {
+TEST_P(KernelTest, CompactSupportAndPositive)
+{
   const auto [k, dim] = GetParam();
   const double h = 0.7, R = kernel_radius(k) * h;
-  EXPECT_NEAR(kernel_W(k, dim, R, h), 0.0, 1e-60); // q = R up to round-off
+  EXPECT_NEAR(kernel_W(k, dim, R, h), 0.0, 1e-60);    // q = R up to round-off
   EXPECT_EQ(kernel_W(k, dim, R * (1.0 + 1e-12), h), 0.0);
   EXPECT_EQ(kernel_W(k, dim, 1.5 * R, h), 0.0);
   EXPECT_EQ(kernel_dWdr(k, dim, R * 1.01, h), 0.0);
@@ -62,34 +63,36 @@ TEST_P(KernelTest, CompactSupportAndPositive) {
   }
 }
 
-TEST_P(KernelTest, GradientMatchesNumericalDerivative) {
+TEST_P(KernelTest, GradientMatchesNumericalDerivative)
+{
   const auto [k, dim] = GetParam();
   const double h = 1.3, R = kernel_radius(k) * h, eps = 1e-6;
   double worst = 0.0, scale = 0.0;
   for (int i = 1; i < 400; i++) {
     const double r = R * i / 400.0;
     const double numeric =
-        (kernel_W(k, dim, r + eps, h) - kernel_W(k, dim, r - eps, h)) /
-        (2 * eps);
+        (kernel_W(k, dim, r + eps, h) - kernel_W(k, dim, r - eps, h)) / (2 * eps);
     worst = std::max(worst, std::fabs(numeric - kernel_dWdr(k, dim, r, h)));
     scale = std::max(scale, std::fabs(kernel_dWdr(k, dim, r, h)));
   }
   EXPECT_LT(worst, 1e-7 * scale) << kernel_name(k) << " dim " << dim;
 }
 
-TEST_P(KernelTest, ScalesWithH) {
+TEST_P(KernelTest, ScalesWithH)
+{
   // W(r, h) = h^-d W(r/h, 1)
   const auto [k, dim] = GetParam();
   for (double q : {0.0, 0.3, 0.99, 1.5, 2.2})
-    EXPECT_NEAR(kernel_W(k, dim, q * 2.5, 2.5),
-                kernel_W(k, dim, q, 1.0) / std::pow(2.5, dim), 1e-14);
+    EXPECT_NEAR(kernel_W(k, dim, q * 2.5, 2.5), kernel_W(k, dim, q, 1.0) / std::pow(2.5, dim),
+                1e-14);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllKernels, KernelTest,
                          ::testing::Combine(::testing::ValuesIn(all_kernels),
                                             ::testing::Values(1, 2, 3)));
 
-TEST(KernelNames, RoundTripAndAliases) {
+TEST(KernelNames, RoundTripAndAliases)
+{
   for (auto k : all_kernels) {
     KernelType parsed;
     ASSERT_TRUE(kernel_from_name(kernel_name(k), parsed));
@@ -103,17 +106,18 @@ TEST(KernelNames, RoundTripAndAliases) {
   EXPECT_FALSE(kernel_from_name("lucy", parsed));
 }
 
-TEST(KernelValues, CubicSplineMatchesSeed) {
+TEST(KernelValues, CubicSplineMatchesSeed)
+{
   // seed 000: W = 1/(pi h^3) [1 - 3/2 q^2 + 3/4 q^3] for q <= 1, 1/4 (2-q)^3
   // for 1 <= q <= 2
   const double h = 2.0;
   EXPECT_NEAR(kernel_W(KernelType::CUBIC, 3, 1.0, h),
               (1 - 1.5 * 0.25 + 0.75 * 0.125) / (M_PI * 8.0), 1e-15);
-  EXPECT_NEAR(kernel_W(KernelType::CUBIC, 3, 3.0, h),
-              0.25 * 0.125 / (M_PI * 8.0), 1e-15);
+  EXPECT_NEAR(kernel_W(KernelType::CUBIC, 3, 3.0, h), 0.25 * 0.125 / (M_PI * 8.0), 1e-15);
 }
 
-TEST(KernelValues, NeighbourCountForHfact) {
+TEST(KernelValues, NeighbourCountForHfact)
+{
   // with h = 1.2 (m/rho)^(1/3) the cubic kernel's support sphere holds about 58
   // particles
   const double n = 4.0 / 3.0 * M_PI * std::pow(KernelCubic::radius * 1.2, 3);

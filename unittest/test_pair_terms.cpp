@@ -8,7 +8,8 @@
 
 using namespace SPHAstro;
 
-TEST(Viscosity, ClassicOnlyForApproachingPairs) {
+TEST(Viscosity, ClassicOnlyForApproachingPairs)
+{
   EXPECT_EQ(viscosity_classic(+0.3, 1.0, 1.0, 1.0, 2.0, 0.01, 1.0, 1.0), 0.0);
   // mu = h v.r / (r^2 + eps h^2) = -0.5 / 1.01; Pi = (-alpha c mu + beta mu^2)
   // / rho
@@ -18,7 +19,8 @@ TEST(Viscosity, ClassicOnlyForApproachingPairs) {
   EXPECT_GT(viscosity_classic(-0.5, 1.0, 1.0, 1.0, 2.0, 0.01, 1.3, 0.8), 0.0);
 }
 
-TEST(Conductivity, FluxRunsFromHotToColdAndIsAntisymmetric) {
+TEST(Conductivity, FluxRunsFromHotToColdAndIsAntisymmetric)
+{
   const double f = conductivity_flux(1.0, 2.0, 1.0, 1.0, 0.5, 1.0);
   EXPECT_NEAR(f, std::sqrt(0.5) * 1.0, 1e-15);
   EXPECT_DOUBLE_EQ(conductivity_flux(1.0, 1.0, 2.0, 0.5, 1.0, 1.0), -f);
@@ -28,9 +30,12 @@ TEST(Conductivity, FluxRunsFromHotToColdAndIsAntisymmetric) {
 }
 
 // reference: RK4 with tiny steps of the switch ODE for a prescribed div v(t)
-static double ode_reference(double alpha, double t_end, double cs, double h,
-                            double amin, double amax, double ell) {
-  auto divv = [](double t) { return -3.0 * std::sin(2.0 * t) * std::exp(-t); };
+static double ode_reference(double alpha, double t_end, double cs, double h, double amin,
+                            double amax, double ell)
+{
+  auto divv = [](double t) {
+    return -3.0 * std::sin(2.0 * t) * std::exp(-t);
+  };
   auto rhs = [&](double t, double a) {
     const double s = divv(t) < 0.0 ? -divv(t) : 0.0;
     return -(a - amin) * ell * cs / h + s * (amax - a);
@@ -39,53 +44,49 @@ static double ode_reference(double alpha, double t_end, double cs, double h,
   const double dt = t_end / n;
   for (int k = 0; k < n; k++) {
     const double t = k * dt;
-    const double k1 = rhs(t, alpha),
-                 k2 = rhs(t + 0.5 * dt, alpha + 0.5 * dt * k1);
-    const double k3 = rhs(t + 0.5 * dt, alpha + 0.5 * dt * k2),
-                 k4 = rhs(t + dt, alpha + dt * k3);
+    const double k1 = rhs(t, alpha), k2 = rhs(t + 0.5 * dt, alpha + 0.5 * dt * k1);
+    const double k3 = rhs(t + 0.5 * dt, alpha + 0.5 * dt * k2), k4 = rhs(t + dt, alpha + dt * k3);
     alpha += dt / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4);
   }
   return alpha;
 }
 
-static double switch_march(double alpha, double t_end, int n, double cs,
-                           double h, double amin, double amax, double ell) {
-  auto divv = [](double t) { return -3.0 * std::sin(2.0 * t) * std::exp(-t); };
+static double switch_march(double alpha, double t_end, int n, double cs, double h, double amin,
+                           double amax, double ell)
+{
+  auto divv = [](double t) {
+    return -3.0 * std::sin(2.0 * t) * std::exp(-t);
+  };
   const double dt = t_end / n;
-  for (int k = 0; k < n;
-       k++) // div v at the end of the step, as after a force evaluation
-    alpha = switch_morris_monaghan(alpha, divv((k + 1) * dt), cs, h, dt, amin,
-                                   amax, ell);
+  for (int k = 0; k < n; k++)    // div v at the end of the step, as after a force evaluation
+    alpha = switch_morris_monaghan(alpha, divv((k + 1) * dt), cs, h, dt, amin, amax, ell);
   return alpha;
 }
 
-TEST(MorrisMonaghanSwitch, DecaysExponentiallyWithoutCompression) {
+TEST(MorrisMonaghanSwitch, DecaysExponentiallyWithoutCompression)
+{
   // alpha = alpha_min + (alpha_0 - alpha_min) exp(-t l c / h), any step size
-  const double a =
-      switch_morris_monaghan(1.0, 0.3, 2.0, 0.5, 0.7, 0.1, 1.5, 0.2);
+  const double a = switch_morris_monaghan(1.0, 0.3, 2.0, 0.5, 0.7, 0.1, 1.5, 0.2);
   EXPECT_NEAR(a, 0.1 + 0.9 * std::exp(-0.7 * 0.2 * 2.0 / 0.5), 1e-14);
 }
 
-TEST(MorrisMonaghanSwitch, FollowsItsODEForAPrescribedDivergence) {
+TEST(MorrisMonaghanSwitch, FollowsItsODEForAPrescribedDivergence)
+{
   const double ref = ode_reference(0.1, 1.0, 1.0, 0.1, 0.1, 1.5, 0.2);
-  const double e1 =
-      std::fabs(switch_march(0.1, 1.0, 300, 1.0, 0.1, 0.1, 1.5, 0.2) - ref);
-  const double e2 =
-      std::fabs(switch_march(0.1, 1.0, 600, 1.0, 0.1, 0.1, 1.5, 0.2) - ref);
-  printf(
-      "switch ODE: alpha(1) = %.6f, error %.2e (300 steps), %.2e (600 steps)\n",
-      ref, e1, e2);
-  EXPECT_GT(ref, 0.5); // well above alpha_min: the source term acts
+  const double e1 = std::fabs(switch_march(0.1, 1.0, 300, 1.0, 0.1, 0.1, 1.5, 0.2) - ref);
+  const double e2 = std::fabs(switch_march(0.1, 1.0, 600, 1.0, 0.1, 0.1, 1.5, 0.2) - ref);
+  printf("switch ODE: alpha(1) = %.6f, error %.2e (300 steps), %.2e (600 steps)\n", ref, e1, e2);
+  EXPECT_GT(ref, 0.5);    // well above alpha_min: the source term acts
   EXPECT_LT(e1, 2e-2);
   EXPECT_NEAR(e1 / e2, 2.0,
-              0.3); // first order in dt with div v sampled once per step
+              0.3);    // first order in dt with div v sampled once per step
 }
 
-TEST(MorrisMonaghanSwitch, StaysWithinBoundsForHugeSteps) {
+TEST(MorrisMonaghanSwitch, StaysWithinBoundsForHugeSteps)
+{
   for (double dt : {1e-3, 1.0, 1e3})
     for (double divv : {-1e6, -1.0, 0.0, 5.0}) {
-      const double a =
-          switch_morris_monaghan(0.7, divv, 1.0, 0.1, dt, 0.1, 1.5, 0.2);
+      const double a = switch_morris_monaghan(0.7, divv, 1.0, 0.1, dt, 0.1, 1.5, 0.2);
       EXPECT_GE(a, 0.1);
       EXPECT_LE(a, 1.5);
     }
