@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Stiff and extreme cases: tiny LAMMPS runs that must end cleanly or stop with a clear error.
 
-Usage: python3 unittest/stiff_cases.py WORKDIR [--only NAME[,NAME...]] [--keep-going]
+Usage: python3 unittest/stiff_cases.py WORKDIR [--only NAME[,NAME...]]
 
 Each case writes a small LAMMPS input into WORKDIR/NAME/, runs it with ``lmp`` (one MPI
 rank, a few seconds), and checks the log and the final dump. Every case that should run
@@ -52,7 +52,13 @@ import subprocess
 import sys
 import time
 
-import numpy as np
+try:
+    import numpy as np
+except ImportError:                   # e.g. a pyenv/conda python3 first on PATH: use Debian's
+    if os.path.exists("/usr/bin/python3") and os.path.realpath(sys.executable) != \
+            os.path.realpath("/usr/bin/python3"):
+        os.execv("/usr/bin/python3", ["/usr/bin/python3"] + sys.argv)
+    raise
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, os.pardir, "tools"))
@@ -201,7 +207,7 @@ uncompute       wsum
 """ + pair_and_fixes(tend, dt_estimate(h0, chot), margin=2.0) + f"""set             group all d_h {h0:.10g}
 set             group all d_u v_uinit
 neighbor        {0.5 * h0:.6g} bin
-""" + MONITORS.format(every=10) + f"""timestep        1e-6
+""" + MONITORS.format(every=10) + """timestep        1e-6
 run             100000
 """ + DUMP.format(name="dump.final")
 
@@ -240,7 +246,7 @@ velocity        all set v_vx0 0.0 0.0 units box
 """ + pair_and_fixes(tend, dt_estimate(h0, cs, 2 * v), margin=1.3) + f"""set             group all d_h {h0:.10g}
 set             group all d_u {u0:.10g}
 neighbor        {0.3 * h0:.6g} bin
-""" + MONITORS.format(every=20) + f"""timestep        1e-5
+""" + MONITORS.format(every=20) + """timestep        1e-5
 run             100000
 """ + DUMP.format(name="dump.final")
 
@@ -292,7 +298,7 @@ set             type 2 d_u {u2:.10g}
 neighbor        {0.3 * h1:.6g} multi
 # a tenuous particle's support (2 x 1.3 x its h = 2 in the cutoff) covers thousands of dense ones
 neigh_modify    one 20000 page 400000
-""" + MONITORS.format(every=20) + f"""timestep        1e-5
+""" + MONITORS.format(every=20) + """timestep        1e-5
 run             100000
 """ + DUMP.format(name="dump.final")
 
@@ -351,7 +357,7 @@ set             type 2 d_h {hiso:.10g}
 set             type 2 d_u {uiso:.10g}
 velocity        iso set {viso} 0.0 0.0 units box
 neighbor        {0.3 * h0:.6g} multi
-""" + MONITORS.format(every=10) + f"""timestep        1e-5
+""" + MONITORS.format(every=10) + """timestep        1e-5
 run             100000
 """ + DUMP.format(name="dump.final")
 
