@@ -48,7 +48,6 @@ bounds; ``umin`` (smallest u): a LOWER bound.
 import argparse
 import math
 import os
-import re
 import sys
 
 import numpy as np
@@ -57,8 +56,8 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.p
                                 "tools"))
 
 from sphastro.dump import read_last_frame  # noqa: E402
+from sphastro.runs import parse_sph_log  # noqa: E402
 
-_LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", re.M)
 
 
 def exact(r, t, gamma=5.0 / 3.0, u0=1e-6):
@@ -168,43 +167,8 @@ def noh_measures(frame, t, gamma=5.0 / 3.0, u0=1e-6, radius=1.0, nbins=40,
 
 
 def parse_log(path):
-    """Energy error, capped particles and run size from a LAMMPS log of in.noh (all runs)."""
-    out = {"energy": math.nan, "energy_max": math.nan, "capped": math.nan,
-           "capped_max": math.nan, "steps": math.nan, "natoms": math.nan, "loop_s": math.nan,
-           "procs": math.nan, "runs": 0}
-    with open(path, encoding="utf-8", errors="replace") as f:
-        text = f.read()
-    header = None
-    err, capped = [], []
-    for line in text.splitlines():
-        words = line.split()
-        if words[:1] == ["Step"] and "c_sum[12]" in words:
-            header = words
-            continue
-        if header is None:
-            continue
-        if len(words) != len(header):
-            header = None if line.startswith("Loop time") else header
-            continue
-        try:
-            row = [float(w) for w in words]
-        except ValueError:
-            continue
-        err.append(row[header.index("c_sum[12]")])
-        if "f_hvar[4]" in header:
-            capped.append(row[header.index("f_hvar[4]")])
-    if err:
-        out["energy"] = err[-1]
-        out["energy_max"] = max(abs(e) for e in err)
-    if capped:
-        out["capped"] = capped[-1]
-        out["capped_max"] = max(capped)
-    loops = _LOOP.findall(text)
-    if loops:        # in.noh runs in segments: sum them
-        out.update(loop_s=sum(float(lp[0]) for lp in loops), procs=int(loops[-1][1]),
-                   steps=sum(int(lp[2]) for lp in loops), natoms=int(loops[-1][3]),
-                   runs=len(loops))
-    return out
+    """Energy error, capped particles and run size from the scene's LAMMPS log."""
+    return parse_sph_log(path, loops="sum")
 
 
 def plot(d, t, png, gamma, u0, radius, nbins, title):

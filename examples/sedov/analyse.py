@@ -34,9 +34,7 @@ The time defaults to the dump's ``ITEM: TIME``, else 0.1.  Printed, one figure a
 """
 
 import argparse
-import math
 import os
-import re
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir,
@@ -44,53 +42,13 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.p
 
 from sphastro import sedov  # noqa: E402
 from sphastro.dump import read_last_frame  # noqa: E402
+from sphastro.runs import parse_sph_log  # noqa: E402
 
-_LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", re.M)
 
 
 def parse_log(path):
-    """Energy error, capped particles and run size from a LAMMPS log of in.sedov.
-
-    Reads the thermo blocks (columns ``c_sum[12]``, the relative energy error, and
-    ``f_hvar[4]``, the particles at the cap) and the ``Loop time`` line.  Returns a dict
-    (missing items are nan).
-    """
-    out = {"energy": math.nan, "energy_max": math.nan, "capped": math.nan,
-           "capped_max": math.nan, "steps": math.nan, "natoms": math.nan, "loop_s": math.nan,
-           "procs": math.nan}
-    with open(path, encoding="utf-8", errors="replace") as f:
-        lines = f.read().splitlines()
-    header = None
-    err, capped = [], []
-    for line in lines:
-        words = line.split()
-        if words[:1] == ["Step"] and "c_sum[12]" in words:
-            header = words
-            continue
-        if header is None:
-            continue
-        if len(words) != len(header):
-            header = None if line.startswith("Loop time") else header
-            continue
-        try:
-            row = [float(w) for w in words]
-        except ValueError:
-            continue
-        err.append(row[header.index("c_sum[12]")])
-        if "f_hvar[4]" in header:
-            capped.append(row[header.index("f_hvar[4]")])
-    if err:
-        out["energy"] = err[-1]
-        out["energy_max"] = max(abs(e) for e in err)
-    if capped:
-        out["capped"] = capped[-1]
-        out["capped_max"] = max(capped)
-    loops = _LOOP.findall("\n".join(lines))
-    if loops:
-        # the last loop is the SPH run (in.sedov has a 'run 0' before it)
-        t, procs, steps, natoms = loops[-1]
-        out.update(loop_s=float(t), procs=int(procs), steps=int(steps), natoms=int(natoms))
-    return out
+    """Energy error, capped particles and run size from the scene's LAMMPS log."""
+    return parse_sph_log(path, loops="last")
 
 
 def main(argv=None):

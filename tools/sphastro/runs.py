@@ -1,5 +1,6 @@
 """Helpers for the scripts that run LAMMPS: its environment and the provenance of a run."""
 
+import math
 import os
 import re
 import shutil
@@ -50,3 +51,54 @@ def provenance(log_path):
     except OSError:
         pass
     return ", ".join(parts) or "unknown"
+
+
+_LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", re.M)
+
+
+def parse_sph_log(path, loops="last"):
+    """Energy error, capped particles and run size from the LAMMPS log of an SPH-ASTRO scene.
+
+    Reads the thermo blocks that have the column ``c_sum[12]`` (compute sph/astro/global's
+    relative energy error) and, if present, ``f_hvar[4]`` (fix sph/astro/h: particles at the
+    h cap), and the ``Loop time`` lines: ``loops="last"`` takes the last run (scenes with a
+    ``run 0`` before the real one), ``loops="sum"`` adds up all runs (scenes run in segments).
+    Returns a dict; missing items are nan.
+    """
+    out = {"energy": math.nan, "energy_max": math.nan, "capped": math.nan,
+           "capped_max": math.nan, "steps": math.nan, "natoms": math.nan, "loop_s": math.nan,
+           "procs": math.nan, "runs": 0}
+    with open(path, encoding="utf-8", errors="replace") as f:
+        text = f.read()
+    header = None
+    err, capped = [], []
+    for line in text.splitlines():
+        words = line.split()
+        if words[:1] == ["Step"] and "c_sum[12]" in words:
+            header = words
+            continue
+        if header is None:
+            continue
+        if len(words) != len(header):
+            header = None if line.startswith("Loop time") else header
+            continue
+        try:
+            row = [float(w) for w in words]
+        except ValueError:
+            continue
+        err.append(row[header.index("c_sum[12]")])
+        if "f_hvar[4]" in header:
+            capped.append(row[header.index("f_hvar[4]")])
+    if err:
+        out["energy"] = err[-1]
+        out["energy_max"] = max(abs(e) for e in err)
+    if capped:
+        out["capped"] = capped[-1]
+        out["capped_max"] = max(capped)
+    found = _LOOP.findall(text)
+    if found:
+        chosen = found if loops == "sum" else found[-1:]
+        out.update(loop_s=sum(float(lp[0]) for lp in chosen), procs=int(found[-1][1]),
+                   steps=sum(int(lp[2]) for lp in chosen), natoms=int(found[-1][3]),
+                   runs=len(found))
+    return out
