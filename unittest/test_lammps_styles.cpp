@@ -67,10 +67,13 @@ INSTANTIATE_TEST_SUITE_P(PairSPHAstro, Conservation,
 
 // total energy error after a fixed time with fixed dt; second order: halving dt
 // cuts it by 4
-static double energy_error(double dt)
+// relative total energy error of an expanding ball after t = 0.4 with fixed dt; second order:
+// halving dt cuts it by 4. pair: the pair_style arguments; extra: a further command or ""
+static double energy_error(double dt, const std::string &pair = PAIR, const std::string &extra = "")
 {
   auto lmp = open_lammps();
-  gas(lmp, "ball", 6, PAIR, "sph/astro dt fixed");
+  gas(lmp, "ball", 6, pair, "sph/astro dt fixed");
+  if (!extra.empty()) commands(lmp, {extra});
   const int nsteps = static_cast<int>(std::lround(0.4 / dt));
   commands(lmp,
            {"timestep " + std::to_string(dt), "thermo " + std::to_string(nsteps),
@@ -93,15 +96,7 @@ TEST(FixSPHAstro, EnergyErrorIsSecondOrderInTimestep)
 
 static double energy_error_gradh(double dt)
 {
-  auto lmp = open_lammps();
-  gas(lmp, "ball", 6, PAIR, "sph/astro dt fixed");
-  const int nsteps = static_cast<int>(std::lround(0.4 / dt));
-  commands(lmp,
-           {"fix hvar all sph/astro/h iterate hfact 1.2 tol 1e-10 margin 2.0",
-            "timestep " + std::to_string(dt), "thermo " + std::to_string(nsteps),
-            "run " + std::to_string(nsteps)});
-  const auto end = global_vector(lmp, "sum", 12);
-  return std::fabs(end[DEREL]);
+  return energy_error(dt, PAIR, "fix hvar all sph/astro/h iterate hfact 1.2 tol 1e-10 margin 2.0");
 }
 
 TEST(FixSPHAstroH, GradHEnergyErrorIsSecondOrderInTimestep)
@@ -274,17 +269,8 @@ TEST(PairSPHAstro, BalsaraFactorSeparatesShearFromCompression)
 
 static double energy_error_conductivity(double dt)
 {
-  auto lmp = open_lammps();
-  gas(lmp, "ball", 6,
-      "sph/astro kernel m4 eos ideal $(5.0/3.0) viscosity classic 1.0 2.0 "
-      "conductivity 1.0",
-      "sph/astro dt fixed");
-  const int nsteps = static_cast<int>(std::lround(0.4 / dt));
-  commands(lmp,
-           {"timestep " + std::to_string(dt), "thermo " + std::to_string(nsteps),
-            "run " + std::to_string(nsteps)});
-  const auto end = global_vector(lmp, "sum", 12);
-  return std::fabs(end[DEREL]);
+  return energy_error(
+      dt, "sph/astro kernel m4 eos ideal $(5.0/3.0) viscosity classic 1.0 2.0 conductivity 1.0");
 }
 
 TEST(PairSPHAstro, ConductivityConservesEnergy)
