@@ -96,6 +96,19 @@ def analyse_sod(dump_path, run):
             "n_measured": err["n"]}
 
 
+def analyse_gresho(dump_path, run):
+    """L1 of v_phi (and v_r, P, rho) of the Gresho-Chan vortex (examples/gresho/in.gresho) over
+    r < 0.5 against the steady vortex; errors by examples/gresho/analyse.py."""
+    import importlib.util
+    path = os.path.join(ROOT, "examples", "gresho", "analyse.py")
+    spec = importlib.util.spec_from_file_location("gresho_analyse", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    err = module.gresho_errors(read_last_frame(dump_path), rmax=0.5)
+    return {"vphi": err["vphi"], "vr": err["vr"], "p": err["p"], "rho": err["rho"],
+            "n_measured": err["n"]}
+
+
 SCENES: Dict[str, Scene] = {
     "sod": Scene(
         input="examples/sod/in.sod", res_var="nx", out_var="out",
@@ -103,6 +116,13 @@ SCENES: Dict[str, Scene] = {
         errors=(("rho", "L1_rho"), ("vx", "L1_vx"), ("p", "L1_P"), ("u", "L1_u")),
         plot=("rho", "vx", "p"), fit="rho",
         notes="Sod: ny cells across y,z are fixed, so N ~ nx (quasi-1D); errors over |x| < 0.5"),
+    "gresho": Scene(
+        input="examples/gresho/in.gresho", res_var="n", out_var="out",
+        default_res=(32, 64, 128), analyse=analyse_gresho,
+        errors=(("vphi", "L1_vphi"), ("vr", "L1_vr"), ("p", "L1_P"), ("rho", "L1_rho")),
+        plot=("vphi", "p"), fit="vphi",
+        notes="Gresho-Chan vortex, 2D, t = 1: N ~ 1.15 n^2; errors over r < 0.5; e.g. "
+              "--variants 'visc=constant;visc=switch' --var kernel=wendland/c4 --var hfact=2.0"),
     # Later, e.g.:
     # "sedov": Scene(input="examples/sedov/in.sedov", res_var="n", out_var="out",
     #                default_res=(16, 24, 32), analyse=analyse_sedov,
@@ -291,7 +311,8 @@ def format_table(scene_name, scene, runs_by_variant, nproc):
 def plot(scene_name, scene, runs_by_variant, png_path, nproc):
     from matplotlib.figure import Figure     # no pyplot: no GUI backend, no global state
 
-    labels = {"rho": r"$L_1(\rho)$", "vx": r"$L_1(v_x)$", "p": r"$L_1(P)$", "u": r"$L_1(u)$"}
+    labels = {"rho": r"$L_1(\rho)$", "vx": r"$L_1(v_x)$", "p": r"$L_1(P)$", "u": r"$L_1(u)$",
+              "vphi": r"$L_1(v_\phi)$", "vr": r"$L_1(v_r)$"}
     fig = Figure(figsize=(4.2 * len(scene.plot), 4.2))
     axes = fig.subplots(1, len(scene.plot), squeeze=False)[0]
     markers = "osD^v<>px"
