@@ -109,6 +109,23 @@ def analyse_gresho(dump_path, run):
             "n_measured": err["n"]}
 
 
+def analyse_sedov(dump_path, run):
+    """Sedov-Taylor blast (examples/sedov/in.sedov) against the self-similar solution: L1 of
+    rho, v_r, P over r < 1.2 R_s, |relative error| of the shock radius from the binned density
+    peak (headline) and from the jump's half height, the binned peak density, and from the log
+    the |relative energy error| and the particles held at the h cap."""
+    from sphastro import sedov
+    from sphastro.runs import parse_sph_log
+    frame = read_last_frame(dump_path)
+    t = frame.time if frame.time is not None else float(run.vars.get("tend", 0.1))
+    err = sedov.sedov_errors(frame, t, E=float(run.vars.get("E", 1.0)))
+    log = parse_sph_log(os.path.join(os.path.dirname(dump_path), "log.lammps"), loops="last")
+    return {"rho": err["rho"], "vr": err["v"], "p": err["p"],
+            "rshock": abs(err["err_r_peak"]), "rhalf": abs(err["err_r_half"]),
+            "peak": err["rho_peak"], "energy": abs(log["energy"]), "capped": log["capped"],
+            "n_measured": err["n"]}
+
+
 SCENES: Dict[str, Scene] = {
     "sod": Scene(
         input="examples/sod/in.sod", res_var="nx", out_var="out",
@@ -123,11 +140,16 @@ SCENES: Dict[str, Scene] = {
         plot=("vphi", "p"), fit="vphi",
         notes="Gresho-Chan vortex, 2D, t = 1: N ~ 1.15 n^2; errors over r < 0.5; e.g. "
               "--variants 'visc=constant;visc=switch' --var kernel=wendland/c4 --var hfact=2.0"),
+    "sedov": Scene(
+        input="examples/sedov/in.sedov", res_var="n", out_var="out",
+        default_res=(12, 16, 20), analyse=analyse_sedov,
+        errors=(("rho", "L1_rho"), ("vr", "L1_vr"), ("p", "L1_P"), ("rshock", "Rs_err_peak"),
+                ("rhalf", "Rs_err_half"), ("peak", "rho_peak"), ("energy", "dE_rel"),
+                ("capped", "h_capped")),
+        plot=("rho", "rshock"), fit="rho",
+        notes="Sedov-Taylor, 3D, t = 0.1: N = 4 n^3; L1 over r < 1.2 R_s; Rs_err: |relative "
+              "error| of the shock radius (binned density peak; half height of the jump)"),
     # Later, e.g.:
-    # "sedov": Scene(input="examples/sedov/in.sedov", res_var="n", out_var="out",
-    #                default_res=(16, 24, 32), analyse=analyse_sedov,
-    #                errors=(("rho", "L1_rho"), ("vr", "L1_vr"), ("p", "L1_P")),
-    #                plot=("rho", "vr", "p"), fit="rho"),
     # "noh": ..., "toystar": ...
 }
 
@@ -312,7 +334,8 @@ def plot(scene_name, scene, runs_by_variant, png_path, nproc):
     from matplotlib.figure import Figure     # no pyplot: no GUI backend, no global state
 
     labels = {"rho": r"$L_1(\rho)$", "vx": r"$L_1(v_x)$", "p": r"$L_1(P)$", "u": r"$L_1(u)$",
-              "vphi": r"$L_1(v_\phi)$", "vr": r"$L_1(v_r)$"}
+              "vphi": r"$L_1(v_\phi)$", "vr": r"$L_1(v_r)$",
+              "rshock": r"$|R_{peak} - R_s| / R_s$"}
     fig = Figure(figsize=(4.2 * len(scene.plot), 4.2))
     axes = fig.subplots(1, len(scene.plot), squeeze=False)[0]
     markers = "osD^v<>px"
