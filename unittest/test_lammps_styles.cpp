@@ -224,6 +224,46 @@ TEST(FixSPHAstroSwitch, AlphaComesBackFromARestart)
   std::remove(restart.c_str());
 }
 
+TEST(FixSPHAstroSwitch, CullenDehnenRisesWhenCompressionGrowsAndIgnoresRotation)
+{
+  // converging flow v = -0.5 r: the compression of the cold ball steepens (d(div v)/dt < 0),
+  // alpha jumps up; a rigidly rotating ball (div v ~ 0, curl v = 2) decays to alpha_min
+  for (bool rotate : {false, true}) {
+    auto lmp = open_lammps();
+    gas(lmp, "ball", 6, PAIR, "sph/astro courant 0.3", 0.05, 0.0);
+    commands(
+        lmp,
+        {"fix av all sph/astro/switch cullen-dehnen 0.05 1.5 0.2", "set group all d_alpha 0.05"});
+    if (rotate)
+      commands(lmp, {"variable vx atom -y", "variable vy atom x", "variable vz atom 0.0"});
+    else
+      commands(lmp,
+               {"variable vx atom -0.5*x", "variable vy atom -0.5*y", "variable vz atom -0.5*z"});
+    commands(lmp, {"velocity all set v_vx v_vy v_vz", "run 40"});
+    auto *fix = lmp->modify->get_fix_by_id("av");
+    // mean over the inner particles (the surface of the ball is neither)
+    auto alpha = per_atom(lmp, "alpha");
+    auto x = per_atom(lmp, "xwrapped", 0), y = per_atom(lmp, "xwrapped", 1),
+         z = per_atom(lmp, "xwrapped", 2);
+    double sum = 0.0;
+    int n = 0;
+    for (const auto &[id, a] : alpha)
+      if (x[id] * x[id] + y[id] * y[id] + z[id] * z[id] < 1.0) {
+        sum += a;
+        n++;
+      }
+    ASSERT_GT(n, 0);
+    if (rotate)
+      EXPECT_LT(sum / n, 0.1) << "rotation";
+    else
+      EXPECT_GT(sum / n, 0.5) << "compression";
+    EXPECT_LE(fix->compute_vector(1), 1.5);
+    EXPECT_GE(sum / n, 0.05);
+    const auto end = global_vector(lmp, "sum", 12);
+    for (int k : {PX, PY, PZ}) EXPECT_LT(std::fabs(end[k]), 1e-12) << k;
+  }
+}
+
 // Balsara factor of the central particles: ~0 in rigid rotation, ~1 in uniform
 // compression
 static double central_balsara(const std::vector<std::string> &velocity, bool gradh)
@@ -402,6 +442,37 @@ TEST(FixSPHAstro, AdaptiveTimestepFollowsCourantCriterion)
   // div v and the force of a slightly disordered lattice lower it a little
   EXPECT_LE(lmp->update->dt, expected * 1.0000001);
   EXPECT_GT(lmp->update->dt, 0.8 * expected);
+}
+
+TEST(FixSPHAstro, SignalViscosityTimestepUsesTheLargestSignalVelocity)
+{
+  auto lmp = open_lammps();
+  gas(lmp, "box", 3, "sph/astro kernel m4 eos ideal $(5.0/3.0) viscosity signal 1.0",
+      "sph/astro courant 0.2 force 0.3");
+  commands(lmp, {"velocity all set 0 0 0", "set group all d_u 1.0", "run 0"});
+  // gas at rest: max_j v_sig,ij = c_i + c_j = 2 c (Monaghan 1997), dt = C h / (2 c)
+  const double h = 1.2 * std::cbrt(0.25);
+  const double c = std::sqrt(5.0 / 3.0 * 2.0 / 3.0);
+  const double expected = 0.2 * h / (2.0 * c);
+  EXPECT_LE(lmp->update->dt, expected * 1.0000001);
+  EXPECT_GT(lmp->update->dt, 0.8 * expected);
+}
+
+TEST(PairSPHAstro, SignalViscosityConservesMomentumAndEnergy)
+{
+  // energy error second order in dt as with the classic form
+  const std::string pair = "sph/astro kernel m4 eos ideal $(5.0/3.0) viscosity signal 1.0 3.0";
+  const double e1 = energy_error(0.004, pair), e2 = energy_error(0.002, pair);
+  printf("signal viscosity: |dE/E| = %.3e (dt 0.004), %.3e (dt 0.002), ratio %.2f\n", e1, e2,
+         e1 / e2);
+  EXPECT_GT(e1 / e2, 3.3);
+  EXPECT_LT(e1 / e2, 4.7);
+  auto lmp = open_lammps();
+  gas(lmp, "ball", 6, pair, "sph/astro courant 0.3");
+  commands(lmp, {"velocity all zero linear", "velocity all zero angular", "run 100"});
+  const auto end = global_vector(lmp, "sum", 12);
+  for (int k : {PX, PY, PZ}) EXPECT_LT(std::fabs(end[k]), 1e-12) << k;
+  EXPECT_LT(std::fabs(end[DEREL]), 1e-3);
 }
 
 TEST(FixSPHAstro, TimestepIsTheSmallestOfItsThreeCriteria)
@@ -649,9 +720,11 @@ TEST_P(Restart, ContinuesBitForBit)
   std::remove(restart.c_str());
 }
 
-INSTANTIATE_TEST_SUITE_P(FixSPHAstro, Restart,
-                         ::testing::Values("", "fix hvar all sph/astro/h iterate hfact 1.2",
-                                           "fix hvar all sph/astro/h dhdt"));
+INSTANTIATE_TEST_SUITE_P(
+    FixSPHAstro, Restart,
+    ::testing::Values("", "fix hvar all sph/astro/h iterate hfact 1.2",
+                      "fix hvar all sph/astro/h dhdt",
+                      "fix av all sph/astro/switch cullen-dehnen 0.1 1.5 0.2"));
 
 TEST(FixSPHAstro, RestartWrittenDuringARunContinuesBitForBit)
 {
@@ -747,6 +820,9 @@ TEST_F(BadInput, PairStyleArguments)
                "Illegal pair_style sph/astro eos polytropic");
   expect_error("pair_style sph/astro viscosity classic -1 2", "must be >= 0");
   expect_error("pair_style sph/astro viscosity monaghan", "unknown viscosity 'monaghan'");
+  expect_error("pair_style sph/astro viscosity signal 0", "alpha = 0 must be > 0");
+  expect_error("pair_style sph/astro viscosity signal",
+               "Illegal pair_style sph/astro viscosity signal");
   expect_error("pair_style sph/astro colour blue", "unknown keyword 'colour'");
   commands(lmp, {"pair_style sph/astro"});
   expect_error("pair_coeff * * 1.0", "takes only two type ranges");
@@ -762,6 +838,22 @@ TEST_F(BadInput, FixArguments)
   expect_error("fix gas all sph/astro speed 1", "unknown keyword 'speed'");
   expect_error("fix gas all sph/astro thermal heat", "thermal 'heat' is not one of");
   expect_error("fix gas all sph/astro courant", "Illegal fix sph/astro courant");
+}
+
+TEST_F(BadInput, SwitchArguments)
+{
+  expect_error("fix av all sph/astro/switch balsara 0.1 1 0.1",
+               "switch 'balsara' is not one of: morris-monaghan, cullen-dehnen");
+  expect_error("fix av all sph/astro/switch cullen-dehnen 0.1 1",
+               "cullen-dehnen takes ALPHA_MIN ALPHA_MAX L (got 2 values)");
+  expect_error("fix av all sph/astro/switch cullen-dehnen 1.0 0.5 0.1",
+               "need 0 <= alpha_min < alpha_max (got alpha_min = 1.0, alpha_max = 0.5)");
+  expect_error("fix av all sph/astro/switch morris-monaghan 0.1 1.0 0", "L = 0 must be > 0");
+  commands(lmp,
+           {"pair_style sph/astro viscosity none", "pair_coeff * *", "fix gas all sph/astro",
+            "set group all d_h 0.75", "set group all d_u 1.0",
+            "fix av all sph/astro/switch cullen-dehnen 0.1 1.0 0.1"});
+  expect_error("run 0", "needs pair_style sph/astro viscosity classic or signal");
 }
 
 TEST_F(BadInput, MissingPartners)

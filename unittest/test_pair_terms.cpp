@@ -91,3 +91,60 @@ TEST(MorrisMonaghanSwitch, StaysWithinBoundsForHugeSteps)
       EXPECT_LE(a, 1.5);
     }
 }
+
+TEST(Viscosity, SignalVelocityFormOfMonaghan1997)
+{
+  // receding pairs: nothing
+  EXPECT_EQ(viscosity_signal(+0.3, 1.0, 1.0, 3.0, 1.0, 1.0, 1.0), 0.0);
+  // w = v.r / r = -0.5 / 2; v_sig = c_i + c_j - 3 w; Pi = -alpha/2 v_sig w / rho
+  const double w = -0.25, vsig = 1.3 + 0.7 - 3.0 * w;
+  EXPECT_DOUBLE_EQ(signal_velocity(w, 1.3, 0.7, 3.0), vsig);
+  EXPECT_NEAR(viscosity_signal(-0.5, 2.0, 0.8, 3.0, 1.3, 0.7, 0.9), -0.4 * vsig * w / 0.9, 1e-15);
+  // receding pairs still carry the sound speeds (Courant criterion)
+  EXPECT_DOUBLE_EQ(signal_velocity(+0.4, 1.3, 0.7, 3.0), 2.0);
+  // symmetric in i and j; the Balsara factor scales Pi itself
+  EXPECT_DOUBLE_EQ(viscosity_signal(-0.5, 2.0, 1.0, 3.0, 1.3, 0.7, 0.9),
+                   viscosity_signal(-0.5, 2.0, 1.0, 3.0, 0.7, 1.3, 0.9));
+  EXPECT_NEAR(viscosity_signal(-0.5, 2.0, 1.0, 3.0, 1.3, 0.7, 0.9, 0.25),
+              0.25 * viscosity_signal(-0.5, 2.0, 1.0, 3.0, 1.3, 0.7, 0.9), 1e-15);
+}
+
+TEST(CullenDehnenSwitch, LimiterSeparatesCompressionFromShearAndExpansion)
+{
+  EXPECT_DOUBLE_EQ(cullen_dehnen_limiter(-2.0, 0.0), 1.0);    // pure compression
+  EXPECT_DOUBLE_EQ(cullen_dehnen_limiter(0.0, 3.0), 0.0);     // pure shear/rotation
+  EXPECT_DOUBLE_EQ(cullen_dehnen_limiter(+2.0, 1.0), 0.0);    // expansion
+  EXPECT_DOUBLE_EQ(cullen_dehnen_limiter(-1.0, 1.0), 0.5);
+  EXPECT_DOUBLE_EQ(cullen_dehnen_limiter(0.0, 0.0), 1.0);    // no flow: no veto
+}
+
+TEST(CullenDehnenSwitch, LocalAlphaFromTheGrowthOfCompression)
+{
+  // alpha_loc = 10 h^2 xi max(-d(div v)/dt, 0) / c^2, clamped to [alpha_min, alpha_max]
+  EXPECT_NEAR(cullen_dehnen_alpha_loc(-2.0, 1.0, 1.0, 0.1, 0.0, 1.5), 10 * 0.01 * 2.0, 1e-15);
+  EXPECT_DOUBLE_EQ(cullen_dehnen_alpha_loc(-2e4, 1.0, 1.0, 0.1, 0.0, 1.5), 1.5);
+  EXPECT_DOUBLE_EQ(cullen_dehnen_alpha_loc(+2.0, 1.0, 1.0, 0.1, 0.05, 1.5), 0.05);
+  EXPECT_DOUBLE_EQ(cullen_dehnen_alpha_loc(-2.0, 0.0, 1.0, 0.1, 0.05, 1.5), 0.05);
+  EXPECT_DOUBLE_EQ(cullen_dehnen_alpha_loc(-2.0, 1.0, 0.0, 0.1, 0.05, 1.5), 1.5);    // cold
+}
+
+TEST(CullenDehnenSwitch, JumpsUpAtOnceAndDecaysExponentially)
+{
+  // a growing compression lifts alpha to alpha_loc in one step, whatever dt
+  const double aloc = cullen_dehnen_alpha_loc(-5.0, 1.0, 1.0, 0.1, 0.1, 1.5);
+  EXPECT_DOUBLE_EQ(switch_cullen_dehnen(0.1, -1.0, -5.0, 0.0, 1.0, 0.1, 1e-6, 0.1, 1.5, 0.2), aloc);
+  // no source: alpha = alpha_min + (alpha_0 - alpha_min) exp(-t l c / h) for any step size
+  for (int n : {1, 7, 100}) {
+    double a = 1.2;
+    for (int k = 0; k < n; k++)
+      a = switch_cullen_dehnen(a, 0.5, 0.0, 1.0, 2.0, 0.5, 0.7 / n, 0.1, 1.5, 0.2);
+    EXPECT_NEAR(a, 0.1 + 1.1 * std::exp(-0.7 * 0.2 * 2.0 / 0.5), 1e-14) << n;
+  }
+  // in [alpha_min, alpha_max] for any input
+  for (double dt : {1e-3, 1.0, 1e3})
+    for (double ddivvdt : {-1e9, -1.0, 0.0, 5.0}) {
+      const double a = switch_cullen_dehnen(0.7, -1.0, ddivvdt, 0.3, 1.0, 0.1, dt, 0.1, 1.5, 0.2);
+      EXPECT_GE(a, 0.1);
+      EXPECT_LE(a, 1.5);
+    }
+}

@@ -84,6 +84,9 @@ def main(argv=None):
     parser.add_argument("--beta", type=float, default=2.0, help="beta at alpha (default 2)")
     parser.add_argument("--amin", type=float, default=0.1, help="switch alpha_min (default 0.1)")
     parser.add_argument("--ell", type=float, default=0.2, help="switch decay L (default 0.2)")
+    parser.add_argument("--switch", default="morris-monaghan",
+                        choices=("morris-monaghan", "cullen-dehnen"),
+                        help="fix sph/astro/switch form (default morris-monaghan)")
     parser.add_argument("--kernel", default="m4",
                         help="kernel: m4, m6, wendland/c2, wendland/c4 (default m4)")
     parser.add_argument("--hfact", type=float, default=1.2,
@@ -117,9 +120,9 @@ def main(argv=None):
     env = lammps_environment()
     runs = [run_variant("constant", {**common, "visc": "constant"}, args, env),
             run_variant("switch", {**common, "visc": "switch", "amin": args.amin,
-                                   "ell": args.ell}, args, env)]
+                                   "ell": args.ell, "swform": args.switch}, args, env)]
     labels = [f"constant alpha = {args.alpha:g}",
-              f"switch alpha {args.amin:g}-{args.alpha:g}, L = {args.ell:g}"]
+              f"{args.switch} alpha {args.amin:g}-{args.alpha:g}, L = {args.ell:g}"]
 
     print()
     print(f"Gresho-Chan vortex, 2D, gamma 5/3, t = {args.tend:g}, n = {args.n}, kernel "

@@ -345,6 +345,8 @@ void FixSPHAstro::next_timestep(bool from_end_of_step)
     int ncol;
     const double *cs = static_cast<double *>(pair_->extract_peratom("soundspeed", ncol));
     const double *divv = static_cast<double *>(pair_->extract_peratom("divv", ncol));
+    // signal-velocity viscosity: max_j v_sig,ij of the last force pass, else null
+    const double *vsigmax = static_cast<double *>(pair_->extract_peratom("vsigmax", ncol));
     const double *h = atom->dvector[state_.h];
     double **f = atom->f;
     const int *mask = atom->mask;
@@ -368,10 +370,15 @@ void FixSPHAstro::next_timestep(bool from_end_of_step)
     tagint limiting[3] = {0, 0, 0};
     for (int i = 0; i < nlocal; i++) {
       if (!(mask[i] & groupbit)) continue;
-      const double hdiv = h[i] * std::fabs(divv[i]);
-      const double ai = alpha_atom ? alpha_atom[i] : alpha;
-      const double bi = alpha_atom ? beta_factor * ai : beta;
-      const double vsig = cs[i] + hdiv + 1.2 * (ai * cs[i] + bi * hdiv);
+      double vsig;
+      if (vsigmax)    // Monaghan 1997; Springel 2005 eq. 16: dt = C h_i / max_j v_sig,ij
+        vsig = vsigmax[i];
+      else {
+        const double hdiv = h[i] * std::fabs(divv[i]);
+        const double ai = alpha_atom ? alpha_atom[i] : alpha;
+        const double bi = alpha_atom ? beta_factor * ai : beta;
+        vsig = cs[i] + hdiv + 1.2 * (ai * cs[i] + bi * hdiv);
+      }
       if (vsig > 0.0) {
         const double dtcv = courant_ * h[i] / vsig;
         if (dtcv < mine[0].value) {

@@ -1,13 +1,17 @@
 /* ----------------------------------------------------------------------
-   SPH-ASTRO: Morris & Monaghan viscosity switch
+   SPH-ASTRO: Morris & Monaghan and Cullen & Dehnen viscosity switches
 ------------------------------------------------------------------------- */
 
 // fix ID group sph/astro/switch morris-monaghan ALPHA_MIN ALPHA_MAX L
+// fix ID group sph/astro/switch cullen-dehnen ALPHA_MIN ALPHA_MAX L
 //
 // Particles start at alpha_max unless d_alpha was set (set group all d_alpha 0.1). After each
-// force evaluation alpha_i is advanced over dt with the exact solution of the linear ODE at
-// frozen coefficients (switch_morris_monaghan() in sph_astro_pair_terms.h), which stays
-// between alpha_min and alpha_max for any dt.
+// force evaluation alpha_i is advanced over dt with the exact solution of its ODE at
+// frozen coefficients (switch_morris_monaghan(), switch_cullen_dehnen() in
+// sph_astro_pair_terms.h), which stays between alpha_min and alpha_max for any dt.
+// Cullen-Dehnen: d(div v_i)/dt = (div v_i - div v_i of the previous force evaluation) / dt;
+// the previous value is stored at setup and after every step, so it migrates with the atom
+// and comes back from a restart file.
 // Global vector: 1 mean alpha, 2 largest alpha (group).
 
 #include "fix_sph_astro_switch.h"
@@ -29,6 +33,7 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 
 static constexpr const char *ALPHA_FIX_ID = "SPH_ASTRO_ALPHA";
+static constexpr const char *DIVV_PREV_FIX_ID = "SPH_ASTRO_DIVV_PREV";
 
 FixSPHAstroSwitch::FixSPHAstroSwitch(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
 {
@@ -38,12 +43,16 @@ FixSPHAstroSwitch::FixSPHAstroSwitch(LAMMPS *lmp, int narg, char **arg) : Fix(lm
   extvector = 0;
 
   if (narg < 4) utils::missing_cmd_args(FLERR, "fix sph/astro/switch", error);
-  if (strcmp(arg[3], "morris-monaghan") != 0)
-    error->all(FLERR, "fix sph/astro/switch: switch '{}' is not one of: morris-monaghan", arg[3]);
-  if (narg != 7)
+  if (strcmp(arg[3], "morris-monaghan") == 0)
+    form_ = Form::MORRIS_MONAGHAN;
+  else if (strcmp(arg[3], "cullen-dehnen") == 0)
+    form_ = Form::CULLEN_DEHNEN;
+  else
     error->all(FLERR,
-               "fix sph/astro/switch morris-monaghan takes ALPHA_MIN ALPHA_MAX L (got {} "
-               "values)",
+               "fix sph/astro/switch: switch '{}' is not one of: morris-monaghan, cullen-dehnen",
+               arg[3]);
+  if (narg != 7)
+    error->all(FLERR, "fix sph/astro/switch {} takes ALPHA_MIN ALPHA_MAX L (got {} values)", arg[3],
                narg - 4);
   alpha_min_ = utils::numeric(FLERR, arg[4], false, lmp);
   alpha_max_ = utils::numeric(FLERR, arg[5], false, lmp);
@@ -62,6 +71,13 @@ int FixSPHAstroSwitch::setmask()
   return FINAL_INTEGRATE;
 }
 
+double *FixSPHAstroSwitch::divv_prev()
+{
+  int flag, cols;
+  const int index = atom->find_custom("divv_prev", flag, cols);
+  return index >= 0 ? atom->dvector[index] : nullptr;
+}
+
 void FixSPHAstroSwitch::post_constructor()
 {
   int flag, cols;
@@ -77,6 +93,14 @@ void FixSPHAstroSwitch::post_constructor()
     }
   } else if (flag != 1 || cols != 0)
     error->all(FLERR, "fix sph/astro/switch: custom property alpha exists but is not d_alpha");
+
+  if (form_ == Form::CULLEN_DEHNEN) {
+    if (atom->find_custom("divv_prev", flag, cols) < 0)
+      modify->add_fix(std::string(DIVV_PREV_FIX_ID) + " all property/atom d_divv_prev");
+    else if (flag != 1 || cols != 0)
+      error->all(FLERR,
+                 "fix sph/astro/switch: custom property divv_prev exists but is not d_divv_prev");
+  }
 }
 
 double *FixSPHAstroSwitch::alpha()
@@ -102,6 +126,17 @@ void FixSPHAstroSwitch::init()
     if (!(a[i] >= alpha_min_ && a[i] <= alpha_max_)) a[i] = alpha_max_;
 }
 
+// the div v of the setup force evaluation is the reference for the first step's d(div v)/dt;
+// after a restart it equals the stored one (the setup forces repeat the last step's)
+void FixSPHAstroSwitch::setup(int /*vflag*/)
+{
+  if (form_ != Form::CULLEN_DEHNEN) return;
+  int ncol;
+  const auto *divv = static_cast<double *>(pair_->extract_peratom("divv", ncol));
+  double *prev = divv_prev();
+  for (int i = 0; i < atom->nlocal; i++) prev[i] = divv[i];
+}
+
 void FixSPHAstroSwitch::final_integrate()
 {
   int ncol;
@@ -111,10 +146,26 @@ void FixSPHAstroSwitch::final_integrate()
   double *a = alpha();
   const int *mask = atom->mask;
   const double dt = update->dt;
-  for (int i = 0; i < atom->nlocal; i++)
-    if (mask[i] & groupbit)
-      a[i] = SPHAstro::switch_morris_monaghan(a[i], divv[i], cs[i], h[i], dt, alpha_min_,
-                                              alpha_max_, ell_);
+  const int nlocal = atom->nlocal;
+  if (form_ == Form::MORRIS_MONAGHAN) {
+    for (int i = 0; i < nlocal; i++)
+      if (mask[i] & groupbit)
+        a[i] = SPHAstro::switch_morris_monaghan(a[i], divv[i], cs[i], h[i], dt, alpha_min_,
+                                                alpha_max_, ell_);
+    return;
+  }
+  const auto *curlv = static_cast<double *>(pair_->extract_peratom("curlv", ncol));
+  double *prev = divv_prev();
+  if (!curlv || !prev)
+    error->all(FLERR, "fix sph/astro/switch cullen-dehnen: curl v or d_divv_prev is missing");
+  for (int i = 0; i < nlocal; i++) {
+    if (mask[i] & groupbit) {
+      const double ddivvdt = (divv[i] - prev[i]) / dt;
+      a[i] = SPHAstro::switch_cullen_dehnen(a[i], divv[i], ddivvdt, curlv[i], cs[i], h[i], dt,
+                                            alpha_min_, alpha_max_, ell_);
+    }
+    prev[i] = divv[i];
+  }
 }
 
 double FixSPHAstroSwitch::compute_vector(int n)

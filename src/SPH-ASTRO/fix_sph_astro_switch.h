@@ -16,19 +16,27 @@ FixStyle(sph/astro/switch,FixSPHAstroSwitch);
 
 namespace LAMMPS_NS {
 
-// Per-particle artificial viscosity alpha (Morris & Monaghan 1997, J. Comput. Phys. 136, 41;
-// seed 000 "switch to reduce viscosity"):
+// Per-particle artificial viscosity alpha, two switches:
+// morris-monaghan (Morris & Monaghan 1997, J. Comput. Phys. 136, 41; seed 000 "switch to
+// reduce viscosity"):
 //   d alpha_i/dt = -(alpha_i - alpha_min) / tau_i + S_i,  tau_i = h_i / (l c_i)
 //   S_i = max(-div v_i, 0) (alpha_max - alpha_i)
 // (the source term with the (alpha_max - alpha) factor of Rosswog et al. 2000, which keeps
-// alpha below alpha_max). alpha lives in the custom per-atom property d_alpha of the fix
-// SPH_ASTRO_ALPHA (restart, dump, set, Python like the rest of the state).
+// alpha below alpha_max);
+// cullen-dehnen (Cullen & Dehnen 2010, MNRAS 408, 669; switch_cullen_dehnen() in
+// sph_astro_pair_terms.h): alpha jumps to a local value set by the growth of compression,
+// -d(div v)/dt, limited by the shear, and decays on tau_i = h_i / (l c_i) elsewhere.
+// d(div v)/dt is the change of div v over the last step; the previous div v is the custom
+// property d_divv_prev of the fix SPH_ASTRO_DIVV_PREV.
+// alpha lives in the custom per-atom property d_alpha of the fix SPH_ASTRO_ALPHA (restart,
+// dump, set, Python like the rest of the state).
 class FixSPHAstroSwitch : public Fix {
  public:
   FixSPHAstroSwitch(class LAMMPS *, int, char **);
   int setmask() override;
   void post_constructor() override;
   void init() override;
+  void setup(int) override;
   void final_integrate() override;
   double compute_vector(int) override;
 
@@ -36,10 +44,15 @@ class FixSPHAstroSwitch : public Fix {
   double alpha_min() const { return alpha_min_; }
   double alpha_max() const { return alpha_max_; }
   double decay() const { return ell_; }
+  // the pair style computes curl v for this switch
+  bool needs_curl() const { return form_ == Form::CULLEN_DEHNEN; }
 
  protected:
+  enum class Form { MORRIS_MONAGHAN, CULLEN_DEHNEN };
+  Form form_ = Form::MORRIS_MONAGHAN;
   double alpha_min_ = 0.1, alpha_max_ = 1.0, ell_ = 0.1;
   int alpha_index_ = -1;
+  double *divv_prev();    // d_divv_prev (Cullen-Dehnen)
   SPHAstro::StateIndex state_;
   class PairSPHAstro *pair_ = nullptr;
 };

@@ -51,7 +51,7 @@ PairSPHAstro::PairSPHAstro(LAMMPS *lmp) : Pair(lmp)
   one_coeff = 1;
   manybody_flag = 1;    // forces depend on densities of both partners
   comm_forward = 11;    // rho, P, c_s, vest[3]; h, Omega; alpha; u (cond.); Balsara f
-  comm_reverse = 4;     // rho, nneigh | dudt, sum v.gradW | div and curl sums (Balsara)
+  comm_reverse = 4;     // rho, nneigh | dudt, sum v.gradW, max v_sig | div and curl sums
 }
 
 PairSPHAstro::~PairSPHAstro()
@@ -66,6 +66,7 @@ PairSPHAstro::~PairSPHAstro()
   memory->destroy(dcurl_);
   memory->destroy(curlv_);
   memory->destroy(balsara_);
+  memory->destroy(vsigmax_);
   memory->destroy(hcap_type_);
   if (allocated) {
     memory->destroy(setflag);
@@ -86,8 +87,8 @@ void PairSPHAstro::allocate()
 
 void PairSPHAstro::grow_work_arrays()
 {
-  // (re)allocate also when balsara was switched on after the arrays were made
-  if (atom->nmax <= nmax_ && (!balsara_on_ || balsara_)) return;
+  // (re)allocate also when curl v or v_sig became needed after the arrays were made
+  if (atom->nmax <= nmax_ && (!curl_on_ || curlv_) && (!signal_viscosity() || vsigmax_)) return;
   nmax_ = MAX(nmax_, atom->nmax);
   memory->destroy(pressure_);
   memory->destroy(soundspeed_);
@@ -99,11 +100,13 @@ void PairSPHAstro::grow_work_arrays()
   memory->destroy(dcurl_);
   memory->destroy(curlv_);
   memory->destroy(balsara_);
-  if (balsara_on_) {
+  memory->destroy(vsigmax_);
+  if (curl_on_) {
     memory->create(dcurl_, nmax_, 4, "pair:sph/astro:dcurl");
     memory->create(curlv_, nmax_, "pair:sph/astro:curlv");
-    memory->create(balsara_, nmax_, "pair:sph/astro:balsara");
   }
+  if (balsara_on_) memory->create(balsara_, nmax_, "pair:sph/astro:balsara");
+  if (signal_viscosity()) memory->create(vsigmax_, nmax_, "pair:sph/astro:vsigmax");
   memory->create(pressure_, nmax_, "pair:sph/astro:pressure");
   memory->create(soundspeed_, nmax_, "pair:sph/astro:soundspeed");
   memory->create(vdotgradw_, nmax_, "pair:sph/astro:vdotgradw");
@@ -127,6 +130,7 @@ void PairSPHAstro::settings(int narg, char **arg)
   visc_eps_ = 0.01;
   cond_alpha_ = 0.0;
   balsara_on_ = false;
+  visc_signal_ = false;
   int iarg = 0;
   while (iarg < narg) {
     const std::string key = arg[iarg];
@@ -195,11 +199,30 @@ void PairSPHAstro::settings(int narg, char **arg)
                      ">= 0",
                      arg[iarg + 2], arg[iarg + 3]);
         visc_on_ = (visc_alpha_ > 0.0 || visc_beta_ > 0.0);
+        visc_signal_ = false;
         iarg += 4;
+      } else if (form == "signal") {
+        // viscosity signal ALPHA [BETA]: BETA (default 3) is a number only if one follows
+        if (iarg + 3 > narg)
+          utils::missing_cmd_args(FLERR, "pair_style sph/astro viscosity signal", error);
+        visc_alpha_ = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+        visc_beta_ = 3.0;
+        iarg += 3;
+        if (iarg < narg && utils::is_double(arg[iarg])) {
+          visc_beta_ = utils::numeric(FLERR, arg[iarg], false, lmp);
+          iarg++;
+        }
+        if (!(visc_alpha_ > 0.0) || visc_beta_ < 0.0)
+          error->all(FLERR,
+                     "pair_style sph/astro viscosity signal: alpha = {} must be > 0 and beta = "
+                     "{} >= 0",
+                     visc_alpha_, visc_beta_);
+        visc_on_ = true;
+        visc_signal_ = true;
       } else
         error->all(FLERR,
                    "pair_style sph/astro: unknown viscosity '{}'; allowed: classic ALPHA BETA, "
-                   "none",
+                   "signal ALPHA [BETA], none",
                    form);
     } else if (key == "balsara") {
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_style sph/astro balsara", error);
@@ -227,7 +250,7 @@ void PairSPHAstro::settings(int narg, char **arg)
   }
   kernel_radius_ = SPHAstro::kernel_radius(kernel_);
   if (balsara_on_ && !visc_on_)
-    error->all(FLERR, "pair_style sph/astro: balsara yes needs viscosity classic");
+    error->all(FLERR, "pair_style sph/astro: balsara yes needs viscosity classic or signal");
 }
 
 /* ----------------------------------------------------------------------
@@ -292,8 +315,9 @@ void PairSPHAstro::init_style()
   switch_ = switches.empty() ? nullptr : dynamic_cast<FixSPHAstroSwitch *>(switches.front());
   if (switch_ && !(visc_on_ && visc_alpha_ > 0.0))
     error->all(FLERR,
-               "fix sph/astro/switch needs pair_style sph/astro viscosity classic with alpha > 0 "
-               "(beta scales with the particle's alpha as beta/alpha)");
+               "fix sph/astro/switch needs pair_style sph/astro viscosity classic or signal with "
+               "alpha > 0 (classic: beta scales with the particle's alpha as beta/alpha)");
+  curl_on_ = balsara_on_ || (switch_ && switch_->needs_curl());
 
   // every particle needs a positive mass and smoothing length; the list cutoffs are set
   // by the largest h of each type
@@ -486,7 +510,7 @@ template <class KERNEL, int DIM, bool ENERGY, int VISC, bool COND> void PairSPHA
     comm->reverse_comm(this);
   }
   equation_of_state();
-  if (VISC == BALSARA) balsara_factors<KERNEL, DIM, false>();
+  if (curl_on_) velocity_curl<KERNEL, DIM, false>();
   comm_stage_ = Stage::DENSITY;
   comm->forward_comm(this);
   force_pass<KERNEL, DIM, false, ENERGY, VISC, COND>();
@@ -611,7 +635,7 @@ template <class KERNEL, int DIM, bool ENERGY, int VISC, bool COND> void PairSPHA
 {
   density_gradh<KERNEL, DIM>();
   equation_of_state();
-  if (VISC == BALSARA) balsara_factors<KERNEL, DIM, true>();
+  if (curl_on_) velocity_curl<KERNEL, DIM, true>();
   comm_stage_ = Stage::DENSITY;
   comm->forward_comm(this);
   force_pass<KERNEL, DIM, true, ENERGY, VISC, COND>();
@@ -657,6 +681,7 @@ void PairSPHAstro::force_pass()
   for (int i = 0; i < nzero; i++) {
     vdotgradw_[i] = 0.0;
     if (ENERGY) dudt[i] = 0.0;
+    if (visc_signal(VISC)) vsigmax_[i] = 2.0 * soundspeed_[i];    // at least the pair with itself
   }
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
@@ -670,7 +695,7 @@ void PairSPHAstro::force_pass()
     const double rhoi = rho[i];
     const double prhoi = pressure_[i] / ((GRADH ? omega_[i] : 1.0) * rhoi * rhoi);
     const double ci = soundspeed_[i];
-    double fxi = 0.0, fyi = 0.0, fzi = 0.0, vgwi = 0.0, heati = 0.0;
+    double fxi = 0.0, fyi = 0.0, fzi = 0.0, vgwi = 0.0, heati = 0.0, vsigi = 0.0;
     const int *jlist = firstneigh[i];
     const int jnum = numneigh[i];
     for (int jj = 0; jj < jnum; jj++) {
@@ -702,12 +727,20 @@ void PairSPHAstro::force_pass()
       const double dvx = vxi - vest[j][0], dvy = vyi - vest[j][1], dvz = vzi - vest[j][2];
       const double vdotr = dvx * dx + dvy * dy + dvz * dz;
       double visc = 0.0;
+      if (visc_signal(VISC)) {
+        const double vsig = signal_velocity(vdotr / r, ci, soundspeed_[j], beta);
+        vsigi = MAX(vsigi, vsig);
+        if (newton_pair || j < nlocal) vsigmax_[j] = MAX(vsigmax_[j], vsig);
+      }
       if (VISC && vdotr < 0.0) {
         const double a = alpha_atom ? 0.5 * (alpha_atom[i] + alpha_atom[j]) : alpha;
-        const double b = alpha_atom ? beta_factor * a : beta;
-        const double shear = VISC == BALSARA ? 0.5 * (balsara_[i] + balsara_[j]) : 1.0;
-        visc = viscosity_classic(vdotr, r2, hij, a, b, eps, 0.5 * (ci + soundspeed_[j]),
-                                 0.5 * (rhoi + rhoj), shear);
+        const double shear = visc_balsara(VISC) ? 0.5 * (balsara_[i] + balsara_[j]) : 1.0;
+        if (visc_signal(VISC))
+          visc =
+              viscosity_signal(vdotr, r, a, beta, ci, soundspeed_[j], 0.5 * (rhoi + rhoj), shear);
+        else
+          visc = viscosity_classic(vdotr, r2, hij, a, alpha_atom ? beta_factor * a : beta, eps,
+                                   0.5 * (ci + soundspeed_[j]), 0.5 * (rhoi + rhoj), shear);
       }
       const double fpair = -mi * mj * (prhoi * dwi + prhoj * dwj + visc * dwbar);
       fxi += dx * fpair;
@@ -737,6 +770,7 @@ void PairSPHAstro::force_pass()
     f[i][2] += fzi;
     vdotgradw_[i] += vgwi;
     if (ENERGY) dudt[i] += heati;
+    if (visc_signal(VISC)) vsigmax_[i] = MAX(vsigmax_[i], vsigi);
   }
   if (newton_pair) {
     comm_stage_ = Stage::FORCE;
@@ -752,7 +786,11 @@ template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
   const bool energy = eos_.uses_energy();
   const bool cond = energy && cond_alpha_ > 0.0;
   const bool gradh = hmode_ == HMode::GRADH;
-  const int visc = !visc_on_ ? NO_VISCOSITY : (balsara_on_ ? BALSARA : CLASSIC);
+  int visc = NO_VISCOSITY;
+  if (visc_on_ && visc_signal_)
+    visc = balsara_on_ ? SIGNAL_BALSARA : SIGNAL;
+  else if (visc_on_)
+    visc = balsara_on_ ? BALSARA : CLASSIC;
 #define SPH_ASTRO_EVAL(E, V, C)           \
   {                                       \
     if (gradh)                            \
@@ -761,11 +799,13 @@ template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
       eval<KERNEL, DIM, E, V, C>();       \
     return;                               \
   }
-#define SPH_ASTRO_EVAL_VISC(E, C)                       \
-  {                                                     \
-    if (visc == BALSARA) SPH_ASTRO_EVAL(E, BALSARA, C); \
-    if (visc == CLASSIC) SPH_ASTRO_EVAL(E, CLASSIC, C); \
-    SPH_ASTRO_EVAL(E, NO_VISCOSITY, C);                 \
+#define SPH_ASTRO_EVAL_VISC(E, C)                                     \
+  {                                                                   \
+    if (visc == SIGNAL_BALSARA) SPH_ASTRO_EVAL(E, SIGNAL_BALSARA, C); \
+    if (visc == SIGNAL) SPH_ASTRO_EVAL(E, SIGNAL, C);                 \
+    if (visc == BALSARA) SPH_ASTRO_EVAL(E, BALSARA, C);               \
+    if (visc == CLASSIC) SPH_ASTRO_EVAL(E, CLASSIC, C);               \
+    SPH_ASTRO_EVAL(E, NO_VISCOSITY, C);                               \
   }
   if (cond) SPH_ASTRO_EVAL_VISC(true, true);
   if (energy) SPH_ASTRO_EVAL_VISC(true, false);
@@ -775,15 +815,16 @@ template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
 }
 
 /* ----------------------------------------------------------------------
-   Balsara (1995) shear limiter from this step's div v and curl v (seed 000):
-     f_i = |div v|_i / (|div v|_i + |curl v|_i + 0.0001 c_i / h_i)
+   curl v for the Balsara (1995) shear limiter and the Cullen-Dehnen switch, from this step's
+   predicted velocities (seed 000):
      div v_i = -1/(Omega_i rho_i) sum_j m_j v_ij . grad_i W_ij
      curl v_i = 1/(Omega_i rho_i) sum_j m_j v_ij x grad_i W_ij      (Omega = 1 without GRADH)
-   with the predicted velocities, over the full list and W(h_i) (GRADH) or the half list
-   and W(h_ij). Costs one neighbour loop and two communications when balsara is on.
+     Balsara: f_i = |div v|_i / (|div v|_i + |curl v|_i + 0.0001 c_i / h_i)
+   over the full list and W(h_i) (GRADH) or the half list and W(h_ij). Costs one neighbour
+   loop and two communications, only when balsara is on or fix sph/astro/switch needs curl v.
 ------------------------------------------------------------------------- */
 
-template <class KERNEL, int DIM, bool GRADH> void PairSPHAstro::balsara_factors()
+template <class KERNEL, int DIM, bool GRADH> void PairSPHAstro::velocity_curl()
 {
   using K = Kernel<KERNEL, DIM>;
   double **x = atom->x;
@@ -845,7 +886,7 @@ template <class KERNEL, int DIM, bool GRADH> void PairSPHAstro::balsara_factors(
         std::sqrt(dcurl_[i][1] * dcurl_[i][1] + dcurl_[i][2] * dcurl_[i][2] +
                   dcurl_[i][3] * dcurl_[i][3]);
     curlv_[i] = curlv;
-    balsara_[i] = balsara_factor(divv, curlv, soundspeed_[i], h[i]);
+    if (balsara_on_) balsara_[i] = balsara_factor(divv, curlv, soundspeed_[i], h[i]);
   }
 }
 
@@ -977,9 +1018,11 @@ int PairSPHAstro::pack_reverse_comm(int n, int first, double *buf)
     }
   } else {
     const double *dudt = atom->dvector[state_.dudt];
+    const bool vsig = signal_viscosity();
     for (int i = first; i < first + n; i++) {
       buf[m++] = dudt[i];
       buf[m++] = vdotgradw_[i];
+      if (vsig) buf[m++] = vsigmax_[i];
     }
   }
   return m;
@@ -1002,10 +1045,15 @@ void PairSPHAstro::unpack_reverse_comm(int n, int *list, double *buf)
     }
   } else {
     double *dudt = atom->dvector[state_.dudt];
+    const bool vsig = signal_viscosity();
     for (int k = 0; k < n; k++) {
       const int j = list[k];
       dudt[j] += buf[m++];
       vdotgradw_[j] += buf[m++];
+      if (vsig) {
+        vsigmax_[j] = MAX(vsigmax_[j], buf[m]);
+        m++;
+      }
     }
   }
 }
@@ -1033,7 +1081,7 @@ void PairSPHAstro::read_restart(FILE *fp)
 void PairSPHAstro::write_restart_settings(FILE *fp)
 {
   int ival[3] = {static_cast<int>(kernel_), static_cast<int>(eos_.type),
-                 (visc_on_ ? 1 : 0) + (balsara_on_ ? 2 : 0)};
+                 (visc_on_ ? 1 : 0) + (balsara_on_ ? 2 : 0) + (visc_signal_ ? 4 : 0)};
   double dval[7] = {eos_.gamma, eos_.cs, eos_.K, visc_alpha_, visc_beta_, visc_eps_, cond_alpha_};
   fwrite(ival, sizeof(int), 3, fp);
   fwrite(dval, sizeof(double), 7, fp);
@@ -1053,6 +1101,7 @@ void PairSPHAstro::read_restart_settings(FILE *fp)
   eos_.type = static_cast<EOSType>(ival[1]);
   visc_on_ = (ival[2] & 1) != 0;
   balsara_on_ = (ival[2] & 2) != 0;
+  visc_signal_ = (ival[2] & 4) != 0;
   eos_.gamma = dval[0];
   eos_.cs = dval[1];
   eos_.K = dval[2];
@@ -1082,7 +1131,8 @@ void *PairSPHAstro::extract_peratom(const char *name, int &ncol)
   if (strcmp(name, "divv") == 0) return (void *) divv_;
   if (strcmp(name, "nneigh") == 0) return (void *) nneigh_;
   if (strcmp(name, "omega") == 0) return (void *) omega_;
-  if (strcmp(name, "curlv") == 0) return (void *) (balsara_on_ ? curlv_ : nullptr);
+  if (strcmp(name, "curlv") == 0) return (void *) (curl_on_ ? curlv_ : nullptr);
+  if (strcmp(name, "vsigmax") == 0) return (void *) (signal_viscosity() ? vsigmax_ : nullptr);
   if (strcmp(name, "balsara") == 0) return (void *) (balsara_on_ ? balsara_ : nullptr);
   // non-null when omega_ holds grad-h factors (variable h by iteration)
   if (strcmp(name, "omega_valid") == 0) return hmode_ == HMode::GRADH ? (void *) omega_ : nullptr;

@@ -49,6 +49,8 @@ class PairSPHAstro : public Pair {
   double alpha() const { return visc_alpha_; }
   double beta() const { return visc_beta_; }
   bool has_viscosity() const { return visc_on_; }
+  // viscosity signal: Monaghan (1997) form; the Courant criterion then uses max_j v_sig,ij
+  bool signal_viscosity() const { return visc_on_ && visc_signal_; }
   double beta_factor() const { return visc_alpha_ > 0.0 ? visc_beta_ / visc_alpha_ : 0.0; }
   // per-particle alpha (owned + ghost) when fix sph/astro/switch is active, else null
   const double *alpha_per_atom() const { return alpha_atom_; }
@@ -64,8 +66,10 @@ class PairSPHAstro : public Pair {
   SPHAstro::EOS eos_;
   bool visc_on_ = true;
   double visc_alpha_ = 1.0, visc_beta_ = 2.0, visc_eps_ = 0.01;
-  double cond_alpha_ = 0.0;    // artificial conductivity alpha_u (0: off)
-  bool balsara_on_ = false;    // Balsara shear limiter of the viscosity
+  double cond_alpha_ = 0.0;     // artificial conductivity alpha_u (0: off)
+  bool balsara_on_ = false;     // Balsara shear limiter of the viscosity
+  bool visc_signal_ = false;    // signal-velocity form (Monaghan 1997) instead of classic
+  bool curl_on_ = false;        // curl v needed this run (Balsara or Cullen-Dehnen switch)
 
   // per-particle viscosity alpha of fix sph/astro/switch (owned + ghost), null without it;
   // beta follows as (beta / alpha) x alpha_i
@@ -99,6 +103,7 @@ class PairSPHAstro : public Pair {
   double **dcurl_ = nullptr;        // Balsara: sum_j m_j v_ij . grad W, sum_j m_j v_ij x grad W
   double *curlv_ = nullptr;         // |curl v|
   double *balsara_ = nullptr;       // Balsara factor f of this step
+  double *vsigmax_ = nullptr;       // signal viscosity: max_j v_sig,ij over the kernel
 
   bigint computed_step_ = -1;
   int computed_nlocal_ = -1;
@@ -108,10 +113,13 @@ class PairSPHAstro : public Pair {
 
   void allocate();
   void grow_work_arrays();
-  enum ViscosityForm { NO_VISCOSITY = 0, CLASSIC = 1, BALSARA = 2 };
+  // viscosity variants of the force pass: form (classic/signal) x Balsara limiter
+  enum ViscosityForm { NO_VISCOSITY = 0, CLASSIC = 1, BALSARA = 2, SIGNAL = 3, SIGNAL_BALSARA = 4 };
+  static constexpr bool visc_balsara(int v) { return v == BALSARA || v == SIGNAL_BALSARA; }
+  static constexpr bool visc_signal(int v) { return v == SIGNAL || v == SIGNAL_BALSARA; }
   template <class KERNEL, int DIM, bool ENERGY, int VISC, bool COND> void eval();
   template <class KERNEL, int DIM, bool ENERGY, int VISC, bool COND> void eval_gradh();
-  template <class KERNEL, int DIM, bool GRADH> void balsara_factors();
+  template <class KERNEL, int DIM, bool GRADH> void velocity_curl();
   template <class KERNEL, int DIM> void density_gradh();
   template <class KERNEL, int DIM, bool GRADH, bool ENERGY, int VISC, bool COND> void force_pass();
   template <class KERNEL, int DIM> void dispatch_physics();

@@ -24,6 +24,25 @@ inline double viscosity_classic(double vdotr, double r2, double hij, double alph
   return (-alpha * cbar * mu + beta * mu * mu) / rhobar;
 }
 
+// Signal-velocity artificial viscosity (Monaghan 1997, J. Comput. Phys. 136, 298, by analogy
+// with Riemann solvers; in this form in Springel 2005, MNRAS 364, 1105, eqs. 14-15):
+//   Pi_ij = -(alpha/2) v_sig w_ij / rho_ij   for w_ij = v_ij . r_ij / |r_ij| < 0, else 0
+//   v_sig = c_i + c_j - beta w_ij            (beta = 3)
+// The quadratic term alpha beta w^2 / 2 scales with alpha by construction, so a per-particle
+// alpha needs no separate beta. The Balsara limiter multiplies Pi_ij by shear = (f_i + f_j)/2.
+inline double signal_velocity(double w, double ci, double cj, double beta)
+{
+  return ci + cj - beta * (w < 0.0 ? w : 0.0);
+}
+
+inline double viscosity_signal(double vdotr, double r, double alpha, double beta, double ci,
+                               double cj, double rhobar, double shear = 1.0)
+{
+  if (vdotr >= 0.0) return 0.0;
+  const double w = vdotr / r;
+  return -0.5 * shear * alpha * signal_velocity(w, ci, cj, beta) * w / rhobar;
+}
+
 // Balsara factor f_i = |div v| / (|div v| + |curl v| + 0.0001 c / h)   (seed 000, "Balsara
 // viscosity"): 1 in pure compression, 0 in pure shear
 inline double balsara_factor(double divv, double curlv, double cs, double h)
@@ -58,6 +77,44 @@ inline double switch_morris_monaghan(double alpha, double divv, double cs, doubl
   if (!(k > 0.0)) return alpha;    // cold and not compressed: nothing drives alpha
   const double alpha_eq = (alpha_min * inv_tau + source * alpha_max) / k;
   return alpha_eq + (alpha - alpha_eq) * std::exp(-k * dt);
+}
+
+// Cullen & Dehnen (2010, MNRAS 408, 669) viscosity switch in the simplified form of Phantom
+// (Price et al. 2018, PASA 35, e031) and SPHENIX (Borrow et al. 2022, MNRAS 511,
+// 2367), with d(div v)/dt from the change of div v over the last step:
+//   xi_i  = max(-div v_i, 0)^2 / (max(-div v_i, 0)^2 + |curl v_i|^2)   (1 if both vanish)
+//   A_i   = xi_i max(-d(div v_i)/dt, 0)                   (shock indicator: growing compression)
+//   alpha_loc = min(10 h_i^2 A_i / c_i^2, alpha_max), at least alpha_min
+//   alpha_i -> alpha_loc at once if alpha_loc > alpha_i, else it decays towards alpha_loc,
+//   d alpha_i/dt = -(alpha_i - alpha_loc) / tau_i, tau_i = h_i / (l c_i), solved exactly
+//   at frozen coefficients.
+inline double cullen_dehnen_limiter(double divv, double curlv)
+{
+  const double c = divv < 0.0 ? divv * divv : 0.0;
+  const double denom = c + curlv * curlv;
+  return denom > 0.0 ? c / denom : 1.0;
+}
+
+inline double cullen_dehnen_alpha_loc(double ddivvdt, double xi, double cs, double h,
+                                      double alpha_min, double alpha_max)
+{
+  const double source = 10.0 * h * h * xi * (ddivvdt < 0.0 ? -ddivvdt : 0.0);
+  const double c2 = cs * cs;
+  if (!(c2 > 0.0)) return source > 0.0 ? alpha_max : alpha_min;
+  const double a = source / c2;
+  return a > alpha_max ? alpha_max : (a < alpha_min ? alpha_min : a);
+}
+
+inline double switch_cullen_dehnen(double alpha, double divv, double ddivvdt, double curlv,
+                                   double cs, double h, double dt, double alpha_min,
+                                   double alpha_max, double ell)
+{
+  const double xi = cullen_dehnen_limiter(divv, curlv);
+  const double aloc = cullen_dehnen_alpha_loc(ddivvdt, xi, cs, h, alpha_min, alpha_max);
+  if (aloc >= alpha) return aloc;
+  const double inv_tau = ell * cs / h;
+  if (!(inv_tau > 0.0)) return alpha;
+  return aloc + (alpha - aloc) * std::exp(-inv_tau * dt);
 }
 
 }    // namespace SPHAstro
