@@ -29,6 +29,10 @@ lattice cells, so there ``N ~ nx`` and ``q = p``.
 Further scenes are added as entries of :data:`SCENES` (name -> :class:`Scene`: input file,
 resolution variable, dump variable, default resolutions, analysis function, error columns).
 
+``--variants physics`` runs the scene's own set of physics variants (Sod: fixed h with hfact
+1.5, variable h, variable h with the Morris-Monaghan or the Cullen-Dehnen switch, and the
+signal-velocity viscosity with Cullen-Dehnen; Sedov: constant alpha and both switches).
+
 Variants: ``--variants`` takes ``;``-separated variants, each a ``,``-separated list of
 ``name=value`` LAMMPS variable settings, e.g. ``'hfact=1.2;hfact=1.5,kernel=m6'``; every variant
 is run at every resolution and drawn as its own curve.  ``--var name=value`` (repeatable) applies
@@ -73,6 +77,7 @@ class Scene:
     plot : keys of ``errors`` drawn against wall time (one panel each).
     fit : key whose convergence order is fitted.
     notes : one line printed under the table.
+    physics : the variants of ``--variants physics`` (smoothing-length modes, switches).
     """
     input: str
     res_var: str
@@ -83,6 +88,7 @@ class Scene:
     plot: Sequence[str]
     fit: str
     notes: str = ""
+    physics: str = ""
 
 
 def analyse_sod(dump_path, run):
@@ -119,7 +125,7 @@ def analyse_sedov(dump_path, run):
     frame = read_last_frame(dump_path)
     t = frame.time if frame.time is not None else float(run.vars.get("tend", 0.1))
     err = sedov.sedov_errors(frame, t, E=float(run.vars.get("E", 1.0)))
-    log = parse_sph_log(os.path.join(os.path.dirname(dump_path), "log.lammps"), loops="last")
+    log = parse_sph_log(os.path.join(os.path.dirname(dump_path), "log.lammps"), loops="sum")
     return {"rho": err["rho"], "vr": err["v"], "p": err["p"],
             "rshock": abs(err["err_r_peak"]), "rhalf": abs(err["err_r_half"]),
             "peak": err["rho_peak"], "energy": abs(log["energy"]), "capped": log["capped"],
@@ -132,14 +138,18 @@ SCENES: Dict[str, Scene] = {
         default_res=(32, 48, 64, 96, 128), analyse=analyse_sod,
         errors=(("rho", "L1_rho"), ("vx", "L1_vx"), ("p", "L1_P"), ("u", "L1_u")),
         plot=("rho", "vx", "p"), fit="rho",
-        notes="Sod: ny cells across y,z are fixed, so N ~ nx (quasi-1D); errors over |x| < 0.5"),
+        notes="Sod: ny cells across y,z are fixed, so N ~ nx (quasi-1D); errors over |x| < 0.5",
+        physics="hmode=fixed,hfact=1.5;hmode=iterate;hmode=iterate,switch=mm;"
+                "hmode=iterate,switch=cd;hmode=iterate,visc=signal,switch=cd"),
     "gresho": Scene(
         input="examples/gresho/in.gresho", res_var="n", out_var="out",
         default_res=(32, 64, 128), analyse=analyse_gresho,
         errors=(("vphi", "L1_vphi"), ("vr", "L1_vr"), ("p", "L1_P"), ("rho", "L1_rho")),
         plot=("vphi", "p"), fit="vphi",
         notes="Gresho-Chan vortex, 2D, t = 1: N ~ 1.15 n^2; errors over r < 0.5; e.g. "
-              "--variants 'visc=constant;visc=switch' --var kernel=wendland/c4 --var hfact=2.0"),
+              "--variants 'visc=constant;visc=switch' --var kernel=wendland/c4 --var hfact=2.0",
+        physics="visc=constant;visc=switch,swform=morris-monaghan;"
+                "visc=switch,swform=cullen-dehnen"),
     "sedov": Scene(
         input="examples/sedov/in.sedov", res_var="n", out_var="out",
         default_res=(12, 16, 20), analyse=analyse_sedov,
@@ -148,7 +158,8 @@ SCENES: Dict[str, Scene] = {
                 ("capped", "h_capped")),
         plot=("rho", "rshock"), fit="rho",
         notes="Sedov-Taylor, 3D, t = 0.1: N = 4 n^3; L1 over r < 1.2 R_s; Rs_err: |relative "
-              "error| of the shock radius (binned density peak; half height of the jump)"),
+              "error| of the shock radius (binned density peak; half height of the jump)",
+        physics="switch=no;switch=mm;switch=cd"),
     # Later, e.g.:
     # "noh": ..., "toystar": ...
 }
@@ -372,7 +383,8 @@ def main(argv=None):
                                                          "error_vs_time"))
     parser.add_argument("--variants", default=None,
                         help="';'-separated variants of ','-separated name=value LAMMPS "
-                             "variables, one curve each, e.g. 'hfact=1.2;hfact=1.5'")
+                             "variables, one curve each, e.g. 'hfact=1.2;hfact=1.5', or "
+                             "'physics' for the scene's h modes and switches")
     parser.add_argument("--var", action="append", default=[], metavar="NAME=VALUE",
                         help="LAMMPS variable for every run (repeatable)")
     parser.add_argument("--lmp", default="lmp", help="LAMMPS executable (default lmp)")
@@ -386,7 +398,9 @@ def main(argv=None):
     res_list = ([int(float(v)) for v in args.resolutions.split(",") if v.strip()]
                 if args.resolutions else list(scene.default_res))
     common = parse_settings(args.var)
-    variants = parse_variants(args.variants)
+    if args.variants == "physics" and not scene.physics:
+        parser.error(f"scene {args.scene} has no physics variants")
+    variants = parse_variants(scene.physics if args.variants == "physics" else args.variants)
     env = lammps_environment()
     outdir = os.path.abspath(args.outdir)
     os.makedirs(outdir, exist_ok=True)

@@ -7,6 +7,7 @@
 #include "compute.h"
 #include "fix.h"
 #include "force.h"
+#include "neigh_list.h"
 #include "pair.h"
 
 #include <cmath>
@@ -133,6 +134,169 @@ TEST(FixSPHAstroH, IterationConvergesOnADisorderedGlass)
   EXPECT_LT(worst, 1e-7);
   EXPECT_EQ(fix->compute_vector(2), 0.0);
   EXPECT_EQ(fix->compute_vector(3), 0.0);
+}
+
+// mean and largest neighbour-list length of the local atoms of the pair's list(s)
+static std::pair<double, int> list_lengths(const std::unique_ptr<LAMMPS> &lmp, int type_only)
+{
+  auto *list = lmp->force->pair->list;
+  double sum = 0.0;
+  int n = 0, most = 0;
+  for (int ii = 0; ii < list->inum; ii++) {
+    const int i = list->ilist[ii];
+    if (type_only && lmp->atom->type[i] != type_only) continue;
+    sum += list->numneigh[i];
+    most = std::max(most, list->numneigh[i]);
+    n++;
+  }
+  return {n ? sum / n : 0.0, most};
+}
+
+// a dense fcc clump (lattice constant 1, rho = 1) in a tenuous fcc gas (lattice constant
+// a_out) of equal-mass particles, one atom type; h iterated from a rough start
+static std::unique_ptr<LAMMPS> clump_in_tenuous_gas(double a_out, int cells_out, int clump,
+                                                    const std::string &hfix_extra,
+                                                    const std::string &nbin)
+{
+  auto lmp = open_lammps();
+  const double half = 0.5 * a_out * cells_out, c = 0.5 * clump;
+  const double n_out = 4.0 / (a_out * a_out * a_out);    // number density (lattice fcc)
+  const double rho_out = 0.25 * n_out;                   // mass density
+  const std::string box = num(-half) + " " + num(half);
+  const std::string cl = num(-c) + " " + num(c);
+  commands(lmp,
+           {"units lj",
+            "atom_style atomic",
+            "atom_modify map array",
+            "boundary p p p",
+            "region box block " + box + " " + box + " " + box + " units box",
+            "create_box 1 box",
+            "lattice fcc " + num(n_out) + " origin 0.25 0.25 0.25",
+            "region clump block " + cl + " " + cl + " " + cl + " units box",
+            "region outside block " + cl + " " + cl + " " + cl + " side out units box",
+            "create_atoms 1 region outside",
+            "lattice fcc 4.0 origin 0.25 0.25 0.25",
+            "create_atoms 1 region clump",
+            "mass 1 0.25",
+            std::string("pair_style ") + PAIR,
+            "pair_coeff * *",
+            "fix gas all sph/astro",
+            "variable inside atom (abs(x)<" + num(c + 0.1) + ")*(abs(y)<" + num(c + 0.1) +
+                ")*(abs(z)<" + num(c + 0.1) + ")",
+            "variable h0 atom 1.2*(0.25/(" + num(rho_out) + "+v_inside))^(1/3)",
+            "set group all d_h v_h0",
+            "set group all d_u 1.0",
+            "velocity all set 0 0 0",
+            "fix hvar all sph/astro/h iterate hfact 1.2 tol 1e-8 margin 1.5 " + hfix_extra,
+            "neighbor 0.3 " + nbin,
+            "neigh_modify one 20000 page 200000",
+            "run 1"});
+  return lmp;
+}
+
+static double worst_h_error(const std::unique_ptr<LAMMPS> &lmp, double &hmin, double &hmax)
+{
+  auto h = per_atom(lmp, "h");
+  auto rho = per_atom(lmp, "rho");
+  double worst = 0.0;
+  hmin = INFINITY;
+  hmax = 0.0;
+  for (const auto &[id, hi] : h) {
+    hmin = std::min(hmin, hi);
+    hmax = std::max(hmax, hi);
+    const double target = 1.2 * std::cbrt(0.25 / rho[id]);
+    worst = std::max(worst, std::fabs(hi - target) / target);
+  }
+  return worst;
+}
+
+TEST(FixSPHAstroH, IterationConvergesOnAMillionToOneDensityContrast)
+{
+  // rho 1 against 1e-6: h spans two decades
+  auto lmp = clump_in_tenuous_gas(100.0, 2, 6, "", "bin");
+  double hmin, hmax;
+  const double worst = worst_h_error(lmp, hmin, hmax);
+  auto *fix = lmp->modify->get_fix_by_id("hvar");
+  printf("1e6 contrast: h %.3g..%.3g (ratio %.0f), mean iterations %.2f (max %.0f), failures "
+         "%.0f, capped %.0f\n",
+         hmin, hmax, hmax / hmin, fix->compute_vector(0), fix->compute_vector(1),
+         fix->compute_vector(2), fix->compute_vector(3));
+  EXPECT_LT(worst, 1e-6);
+  EXPECT_EQ(fix->compute_vector(2), 0.0);
+  EXPECT_EQ(fix->compute_vector(3), 0.0);
+  EXPECT_GT(hmax / hmin, 50.0);
+  const double hdense = 1.2 * std::cbrt(0.25);    // the clump's inside: rho = 1
+  EXPECT_NEAR(hmin, hdense, 0.02 * hdense);
+}
+
+TEST(FixSPHAstroH, CollectionsKeepTheListsOfSmallSmoothingLengthsShort)
+{
+  // rho 1 against 1e-3 (h ratio 10), 6912 clump particles: with one cutoff every clump
+  // particle's list spans the tenuous gas' kernel (the whole clump); with h collections it
+  // spans its own. Same h either way.
+  std::vector<double> mean(2), hmin(2), hmax(2);
+  for (int k : {0, 1}) {
+    auto lmp = clump_in_tenuous_gas(10.0, 6, 12, k ? "collections auto" : "", k ? "multi" : "bin");
+    const double worst = worst_h_error(lmp, hmin[k], hmax[k]);
+    auto *fix = lmp->modify->get_fix_by_id("hvar");
+    mean[k] = list_lengths(lmp, 0).first;
+    printf("1e3 contrast, %s: h %.3g..%.3g, mean list length %.0f, capped %.0f\n",
+           k ? "collections" : "one cutoff", hmin[k], hmax[k], mean[k], fix->compute_vector(3));
+    EXPECT_LT(worst, 1e-6);
+    EXPECT_EQ(fix->compute_vector(2), 0.0);
+    EXPECT_EQ(fix->compute_vector(3), 0.0);
+  }
+  EXPECT_NEAR(hmin[1], hmin[0], 1e-9 * hmin[0]);
+  EXPECT_NEAR(hmax[1], hmax[0], 1e-9 * hmax[0]);
+  EXPECT_LT(mean[1], 0.2 * mean[0]);
+}
+
+// an expanding hot ball: h grows past margin x its start value; sph/astro/run rebuilds the
+// lists (rebuild) and the collections follow h, with the same result as one run with lists
+// wide enough from the start
+static std::map<int, double> expanding_ball(const std::string &hfix, const std::string &nbin,
+                                            const std::string &run, std::vector<double> &stats,
+                                            double skin = 0.1)
+{
+  auto lmp = open_lammps();
+  gas(lmp, "ball", 6, PAIR, "sph/astro dt fixed", 1.0, 0.04);
+  commands(lmp,
+           {hfix + " tol 1e-10", "neighbor " + num(skin) + " " + nbin,
+            "neigh_modify every 1 delay 0 check yes one 10000", "timestep 0.004", run});
+  auto *fix = lmp->modify->get_fix_by_id("hvar");
+  stats.clear();
+  for (int k = 0; k < 6; k++) stats.push_back(fix->compute_vector(k));
+  return per_atom(lmp, "x", 0);
+}
+
+TEST(FixSPHAstroH, ListsFollowGrowingSmoothingLengths)
+{
+  std::vector<double> ref_stats, stats;
+  const auto ref =
+      expanding_ball("fix hvar all sph/astro/h iterate margin 4.0", "bin", "run 150", ref_stats);
+  EXPECT_EQ(ref_stats[3], 0.0);    // margin 4: nobody reaches the cap
+  // margin 1.3 alone: particles are held at the cap
+  expanding_ball("fix hvar all sph/astro/h iterate margin 1.3", "bin", "run 150", stats);
+  EXPECT_GT(stats[3], 0.0);
+  // margin 1.3 with rebuild (and collections, with a skin wide enough that the lists are
+  // rebuilt because h outgrows its collection, not only because atoms move): no particle at
+  // the cap, the same trajectory
+  for (const std::string &variant : {"rebuild 0.9", "rebuild 0.9 collections auto"}) {
+    const bool coll = variant.find("collections") != std::string::npos;
+    const auto x =
+        expanding_ball("fix hvar all sph/astro/h iterate margin 1.3 " + variant,
+                       coll ? "multi" : "bin", "sph/astro/run 150", stats, coll ? 0.8 : 0.1);
+    printf("%s: %.0f runs ended for a rebuild, %.0f collection rebuilds, capped %.0f\n",
+           variant.c_str(), stats[4], stats[5], stats[3]);
+    EXPECT_GE(stats[4], 1.0) << variant;
+    EXPECT_EQ(stats[3], 0.0) << variant;
+    if (coll) EXPECT_GE(stats[5], 1.0);
+    ASSERT_EQ(x.size(), ref.size());
+    double worst = 0.0;
+    for (const auto &[id, value] : ref) worst = std::max(worst, std::fabs(x.at(id) - value));
+    // the same to the h tolerance: a round-off change can add a Newton iteration
+    EXPECT_LT(worst, 1e-8) << variant;
+  }
 }
 
 TEST(FixSPHAstroH, DhdtFollowsTheDivergence)
@@ -838,6 +1002,19 @@ TEST_F(BadInput, FixArguments)
   expect_error("fix gas all sph/astro speed 1", "unknown keyword 'speed'");
   expect_error("fix gas all sph/astro thermal heat", "thermal 'heat' is not one of");
   expect_error("fix gas all sph/astro courant", "Illegal fix sph/astro courant");
+}
+
+TEST_F(BadInput, SmoothingLengthFixArguments)
+{
+  expect_error("fix hvar all sph/astro/h iterate rebuild 1.5", "rebuild = 1.5 must be in");
+  expect_error("fix hvar all sph/astro/h iterate margin 1.5 rebuild 0.5",
+               "rebuild = 0.5 must exceed 1/margin");
+  expect_error("fix hvar all sph/astro/h dhdt collections 0", "collections = 0 must be auto");
+  expect_error("sph/astro/run", "sph/astro/run takes N [upto]");
+  expect_error("sph/astro/run 10 later", "unknown keyword 'later'");
+  valid_setup();
+  commands(lmp, {"fix hvar all sph/astro/h iterate collections auto", "neighbor 0.2 bin"});
+  expect_error("run 0", "collections needs neighbor style multi");
 }
 
 TEST_F(BadInput, SwitchArguments)

@@ -2,8 +2,9 @@
    SPH-ASTRO: variable smoothing length
 ------------------------------------------------------------------------- */
 
-// fix ID group sph/astro/h dhdt [margin M]
-// fix ID group sph/astro/h iterate [hfact F] [tol T] [maxiter N] [margin M]
+// fix ID group sph/astro/h dhdt [margin M] [rebuild F] [collections auto|N|no]
+// fix ID group sph/astro/h iterate [hfact F] [tol T] [maxiter N] [margin M] [rebuild F]
+//                                   [collections auto|N|no]
 //
 // In both modes h is advanced with the drift of fix sph/astro, h <- h exp(dt div v / d), the
 // integral of dh/dt = (h/d) div v at fixed div v (seed 000 eq. 1). In dhdt mode that is the
@@ -11,9 +12,24 @@
 // pair sph/astro runs in its density pass. Smoothing lengths are capped at margin x the
 // largest h of their type when the run began (the neighbour list cutoffs are set for it).
 //
+// rebuild F: LAMMPS sets neighbour-list cutoffs when a run starts. At the end of a step in
+// which some particle's h exceeds F x the cap of its type, or the largest h of a type fell
+// below cap / margin^2 (lists far wider than needed), the run ends (like fix halt) so that
+// the next run sets the cutoffs for the current h; the command sph/astro/run starts that
+// next run by itself. No particle then reaches the cap as long as h grows by less than a
+// factor 1/F per step.
+//
+// collections: per-particle neighbour cutoffs with neighbor multi. At every run start the fix
+// divides the cutoffs kernel_radius x [1.2 h_min, cap] into N intervals ("auto": a factor
+// sqrt(2) apart) and hands them to LAMMPS as neigh_modify collection/interval would; pair sph/astro
+// puts each atom in the collection covering kernel_radius x 1.2 h_i (atom2cut), so small-h
+// particles search small stencils. When an h grows to within 1/1.1 of its collection's
+// cutoff the fix makes LAMMPS rebuild the lists at the next step (atoms change collection).
+//
 // Global vector: 1 mean Newton iterations per particle of the latest density pass,
 // 2 largest number of iterations, 3 particles that did not converge since the run began,
-// 4 particles held at the h cap in the latest pass.
+// 4 particles held at the h cap in the latest pass, 5 runs ended for a list rebuild,
+// 6 list builds forced because an h outgrew its collection.
 
 #include "fix_sph_astro_h.h"
 
@@ -23,13 +39,17 @@
 #include "error.h"
 #include "force.h"
 #include "group.h"
+#include "memory.h"
 #include "modify.h"
+#include "neighbor.h"
 #include "pair_sph_astro.h"
+#include "timer.h"
 #include "update.h"
 #include "utils.h"
 
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
@@ -37,7 +57,7 @@ using namespace FixConst;
 FixSPHAstroH::FixSPHAstroH(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
 {
   vector_flag = 1;
-  size_vector = 4;
+  size_vector = 6;
   global_freq = 1;
   extvector = 0;
 
@@ -57,6 +77,23 @@ FixSPHAstroH::FixSPHAstroH(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, a
     if (key == "margin") {
       margin_ = utils::numeric(FLERR, val, false, lmp);
       if (!(margin_ >= 1.0)) error->all(FLERR, "fix sph/astro/h: margin = {} must be >= 1", val);
+    } else if (key == "rebuild") {
+      rebuild_ = utils::numeric(FLERR, val, false, lmp);
+      if (rebuild_ != 0.0 && !(rebuild_ > 0.0 && rebuild_ <= 1.0))
+        error->all(FLERR, "fix sph/astro/h: rebuild = {} must be in (1/margin, 1], or 0 (off)",
+                   val);
+    } else if (key == "collections") {
+      if (strcmp(val, "auto") == 0)
+        collections_ = -1;
+      else if (strcmp(val, "no") == 0)
+        collections_ = 0;
+      else {
+        collections_ = utils::inumeric(FLERR, val, false, lmp);
+        if (collections_ < 1 || collections_ > 16)
+          error->all(FLERR,
+                     "fix sph/astro/h: collections = {} must be auto, no or a number in 1..16",
+                     val);
+      }
     } else if (mode_ == Mode::ITERATE && key == "hfact") {
       hfact_ = utils::numeric(FLERR, val, false, lmp);
       if (!(hfact_ > 0.0)) error->all(FLERR, "fix sph/astro/h: hfact = {} must be > 0", val);
@@ -69,14 +106,24 @@ FixSPHAstroH::FixSPHAstroH(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, a
       if (max_iterations_ < 1) error->all(FLERR, "fix sph/astro/h: maxiter = {} must be >= 1", val);
     } else
       error->all(FLERR, "fix sph/astro/h {}: unknown keyword '{}'; allowed: {}", arg[3], key,
-                 mode_ == Mode::ITERATE ? "hfact, tol, maxiter, margin" : "margin");
+                 mode_ == Mode::ITERATE ? "hfact, tol, maxiter, margin, rebuild, collections"
+                                        : "margin, rebuild, collections");
     iarg += 2;
   }
+  // a new run's cap is margin x the largest h: the trigger must lie above it
+  if (rebuild_ > 0.0 && !(rebuild_ * margin_ > 1.0))
+    error->all(FLERR,
+               "fix sph/astro/h: rebuild = {} must exceed 1/margin = {} (a new run starts with h "
+               "at 1/margin of the cap)",
+               rebuild_, 1.0 / margin_);
+  if (collections_) force_reneighbor = 1;
+  next_reneighbor = -1;
 }
 
 int FixSPHAstroH::setmask()
 {
-  return 0;    // fix sph/astro calls advance_h() in its drift
+  // fix sph/astro calls advance_h() in its drift; end_of_step checks h against the caps
+  return (rebuild_ > 0.0 || collections_) ? END_OF_STEP | POST_RUN : 0;
 }
 
 void FixSPHAstroH::init()
@@ -98,6 +145,141 @@ void FixSPHAstroH::init()
                      group->names[igroup]);
   }
   failures_local_ = 0;
+  rebuild_requested_ = false;
+  if (collections_) setup_collections();
+}
+
+// geometric cutoff intervals from kernel_radius x 1.2 h_min to kernel_radius x the largest
+// cap, handed to Neighbor as neigh_modify collection/interval does (read by neighbor->init(),
+// which LAMMPS calls after the fixes' init)
+void FixSPHAstroH::setup_collections()
+{
+  if (neighbor->style != Neighbor::MULTI)
+    error->all(FLERR,
+               "fix sph/astro/h collections needs neighbor style multi (e.g. neighbor 0.1 "
+               "multi), got another neighbor style");
+  if (force->pair != pair_)
+    error->all(FLERR,
+               "fix sph/astro/h collections: pair_style sph/astro must be the only pair style "
+               "(the collections size the lists of every pair style by h)");
+  const double *h = atom->dvector[state_.h];
+  double hmin_local = INFINITY, hmin;
+  for (int i = 0; i < atom->nlocal; i++) hmin_local = MIN(hmin_local, h[i]);
+  MPI_Allreduce(&hmin_local, &hmin, 1, MPI_DOUBLE, MPI_MIN, world);
+  double capmax = 0.0;
+  for (int t = 1; t <= atom->ntypes; t++) capmax = MAX(capmax, pair_->h_cap(t));
+  const double R = pair_->kernel_radius();
+  const double cmax = R * capmax;
+  double cmin = std::isfinite(hmin) ? MIN(R * hmin * PairSPHAstro::COLLECTION_GROWTH, cmax) : cmax;
+  // LAMMPS bins every collection over the subdomain and its ghost shell with bins of half its
+  // cutoff: keep the smallest collection at most ~200 bins across (8e6 bins), else a wide
+  // range of h in a large box costs gigabytes of bins
+  double extent = 0.0;
+  for (int d = 0; d < domain->dimension; d++)
+    extent = MAX(extent, domain->subhi[d] - domain->sublo[d] + 2.0 * (cmax + neighbor->skin));
+  double extent_all;
+  MPI_Allreduce(&extent, &extent_all, 1, MPI_DOUBLE, MPI_MAX, world);
+  const double floor_cut = 2.0 * extent_all / 200.0;
+  if (cmin < floor_cut) cmin = MIN(floor_cut, cmax);
+  int n = collections_;
+  // auto: cutoffs a factor sqrt(2) apart, so that an atom's stencil reaches at most
+  // 1.2 sqrt(2) = 1.7 times its kernel support
+  if (n < 0) n = 1 + static_cast<int>(std::ceil(2.0 * std::log2(cmax / cmin) - 1e-9));
+  n = MAX(1, MIN(n, 16));
+  if (cmax <= cmin) n = 1;
+  neighbor->ncollections = n;
+  memory->grow(neighbor->collection2cut, n, "neigh:collection2cut");
+  for (int k = 0; k < n; k++)
+    neighbor->collection2cut[k] = k == n - 1 ? cmax : cmin * std::pow(cmax / cmin, k / (n - 1.0));
+  neighbor->interval_collection_flag = 1;
+  neighbor->custom_collection_flag = 1;
+  comm->ncollections_cutoff = 0;
+  if (comm->me == 0) {
+    std::string cuts;
+    for (int k = 0; k < n; k++) cuts += fmt::format(" {:.4g}", neighbor->collection2cut[k]);
+    utils::logmesg(lmp, "fix sph/astro/h: {} neighbour collections, cutoffs{}\n", n, cuts);
+  }
+}
+
+// the setup lists allow every h up to its type's cap (PairSPHAstro::atom2cut): tight ones
+// are built at step 1. With rebuild, particles held at the cap by the setup's h iteration
+// (h far from its start value) end the run before its first step.
+void FixSPHAstroH::setup(int /*vflag*/)
+{
+  if (collections_) next_reneighbor = update->ntimestep + 1;
+  if (rebuild_ <= 0.0 || mode_ != Mode::ITERATE) return;
+  int capped;
+  MPI_Allreduce(&capped_, &capped, 1, MPI_INT, MPI_SUM, world);
+  if (capped == 0) return;
+  rebuild_requested_ = true;
+  rebuilds_++;
+  timer->force_timeout();
+  if (comm->me == 0)
+    utils::logmesg(lmp,
+                   "fix sph/astro/h: {} particles need h beyond the neighbour-list cap at the "
+                   "setup of step {}: the run ends before its first step so that the lists are "
+                   "rebuilt\n",
+                   capped, update->ntimestep);
+}
+
+void FixSPHAstroH::end_of_step()
+{
+  if (collections_) {
+    // an h within 1/1.1 of its collection's cutoff: rebuild the lists at the next step
+    const double *h = atom->dvector[state_.h];
+    int outgrown_local = 0, outgrown;
+    for (int i = 0; i < atom->nlocal; i++)
+      if (1.1 * h[i] > pair_->h_limit(i)) outgrown_local = 1;
+    MPI_Allreduce(&outgrown_local, &outgrown, 1, MPI_INT, MPI_MAX, world);
+    if (outgrown) {
+      next_reneighbor = update->ntimestep + 1;
+      collection_rebuilds_++;
+    }
+  }
+  if (rebuild_ <= 0.0 || rebuild_requested_) return;
+  const int ntypes = atom->ntypes;
+  const double *h = atom->dvector[state_.h];
+  const int *type = atom->type;
+  // largest h per type and largest h / cap with the atom that has it
+  std::vector<double> hmax_local(ntypes + 1, 0.0), hmax(ntypes + 1, 0.0);
+  struct {
+    double value;
+    int tag;
+  } worst_local = {0.0, 0}, worst;
+  for (int i = 0; i < atom->nlocal; i++) {
+    hmax_local[type[i]] = MAX(hmax_local[type[i]], h[i]);
+    const double ratio = h[i] / pair_->h_cap(type[i]);
+    if (ratio > worst_local.value) worst_local = {ratio, static_cast<int>(atom->tag[i])};
+  }
+  MPI_Allreduce(hmax_local.data(), hmax.data(), ntypes + 1, MPI_DOUBLE, MPI_MAX, world);
+  MPI_Allreduce(&worst_local, &worst, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
+  int shrink_type = 0;
+  for (int t = 1; t <= ntypes && margin_ > 1.0; t++)
+    if (hmax[t] > 0.0 && hmax[t] * margin_ * margin_ < pair_->h_cap(t)) shrink_type = t;
+  if (worst.value <= rebuild_ && !shrink_type) return;
+
+  rebuild_requested_ = true;
+  rebuilds_++;
+  timer->force_timeout();
+  if (comm->me == 0) {
+    if (worst.value > rebuild_)
+      utils::logmesg(lmp,
+                     "fix sph/astro/h: h of atom {} reached {:.3g} of its neighbour-list cap at "
+                     "step {}: the run ends so that the lists are rebuilt for the current h\n",
+                     worst.tag, worst.value, update->ntimestep);
+    else
+      utils::logmesg(lmp,
+                     "fix sph/astro/h: the largest h of type {} fell to {:.3g} of its "
+                     "neighbour-list cap at step {}: the run ends so that the lists are rebuilt "
+                     "narrower\n",
+                     shrink_type, hmax[shrink_type] / pair_->h_cap(shrink_type), update->ntimestep);
+  }
+}
+
+void FixSPHAstroH::post_run()
+{
+  // the stop for a rebuild ends this run only; later runs get the user's timeout back
+  if (rebuild_requested_) timer->reset_timeout();
 }
 
 void FixSPHAstroH::advance_h(double dt)
@@ -107,12 +289,11 @@ void FixSPHAstroH::advance_h(double dt)
   if (!divv || pair_->computed_nlocal() != atom->nlocal) return;
   double *h = atom->dvector[state_.h];
   const int *mask = atom->mask;
-  const int *type = atom->type;
   const double dt_over_d = dt / domain->dimension;
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     h[i] *= std::exp(dt_over_d * divv[i]);
-    h[i] = MIN(h[i], pair_->h_cap(type[i]));
+    h[i] = MIN(h[i], pair_->h_limit(i));
   }
 }
 
@@ -138,6 +319,8 @@ double FixSPHAstroH::compute_vector(int n)
     MPI_Allreduce(&iter_max_, &all, 1, MPI_INT, MPI_MAX, world);
     return all;
   }
+  if (n == 4) return static_cast<double>(rebuilds_);
+  if (n == 5) return static_cast<double>(collection_rebuilds_);
   if (n == 2) {
     bigint all = 0;
     MPI_Allreduce(&failures_local_, &all, 1, MPI_LMP_BIGINT, MPI_SUM, world);

@@ -27,6 +27,9 @@ class FixSPHAstroH : public Fix {
   FixSPHAstroH(class LAMMPS *, int, char **);
   int setmask() override;
   void init() override;
+  void setup(int) override;
+  void end_of_step() override;
+  void post_run() override;
   // h <- h exp(dt div v / d) for the group, capped; called by fix sph/astro in its drift once
   // the step's dt is final
   void advance_h(double dt);
@@ -37,6 +40,10 @@ class FixSPHAstroH : public Fix {
   double tolerance() const { return tolerance_; }
   int max_iterations() const { return max_iterations_; }
   double margin() const { return margin_; }
+  // the run ended early so that the neighbour lists are rebuilt for the current h
+  // (rebuild keyword); sph/astro/run then starts the next run, which sets new caps
+  bool rebuild_requested() const { return rebuild_requested_; }
+  void clear_rebuild_request() { rebuild_requested_ = false; }
 
   // h-iteration statistics of one density pass (summed over ranks by the fix when asked)
   void record(double iterations_sum, int iterations_max, int nparticles, int failures, int capped);
@@ -46,7 +53,14 @@ class FixSPHAstroH : public Fix {
   double hfact_ = 1.2;
   double tolerance_ = 1e-4;
   int max_iterations_ = 30;
-  double margin_ = 1.5;    // neighbour cutoffs allow h up to margin x the largest h at init
+  double margin_ = 1.5;     // neighbour cutoffs allow h up to margin x the largest h at init
+  double rebuild_ = 0.0;    // stop the run when h > rebuild x cap (or < cap / margin^2); 0: off
+  bool rebuild_requested_ = false;
+  bigint rebuilds_ = 0;    // runs stopped for a rebuild since the fix was defined
+  // h collections for neighbor multi: 0 off, -1 auto (factor ~2 apart), else their number
+  int collections_ = 0;
+  bigint collection_rebuilds_ = 0;    // list builds forced because h outgrew its collection
+  void setup_collections();
 
   SPHAstro::StateIndex state_;
   class PairSPHAstro *pair_ = nullptr;

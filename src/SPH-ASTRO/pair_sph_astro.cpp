@@ -50,6 +50,7 @@ PairSPHAstro::PairSPHAstro(LAMMPS *lmp) : Pair(lmp)
   restartinfo = 1;
   one_coeff = 1;
   manybody_flag = 1;    // forces depend on densities of both partners
+  finitecutflag = 1;    // per-atom cutoffs kernel_radius h_i for neighbor multi collections
   comm_forward = 11;    // rho, P, c_s, vest[3]; h, Omega; alpha; u (cond.); Balsara f
   comm_reverse = 4;     // rho, nneigh | dudt, sum v.gradW, max v_sig | div and curl sums
 }
@@ -559,7 +560,7 @@ template <class KERNEL, int DIM> void PairSPHAstro::density_gradh()
     const int i = ilist[ii];
     const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
     const double mi = rmass ? rmass[i] : mass[type[i]];
-    const double cap = hcap_type_[type[i]];
+    const double cap = h_limit(i);
     const int *jlist = firstneigh[i];
     const int jnum = numneigh[i];
 
@@ -1110,6 +1111,38 @@ void PairSPHAstro::read_restart_settings(FILE *fp)
   visc_eps_ = dval[5];
   cond_alpha_ = dval[6];
   kernel_radius_ = SPHAstro::kernel_radius(kernel_);
+}
+
+/* ----------------------------------------------------------------------
+   h collections: with neighbor multi and interval collections (set up by fix sph/astro/h
+   collections, or neigh_modify collection/interval), LAMMPS bins every atom, owned or
+   ghost, into the collection whose upper cutoff covers atom2cut(i), and searches collection
+   pairs (a, b) out to radii2cut(cut_a/2, cut_b/2) + skin. Small-h particles then only scan
+   stencils sized for small h, however large h is elsewhere; the per-type cutoff stays an
+   upper bound. The pair kernels reach R max(h_i, h_j) (grad-h: W(h_i), W(h_j)) or
+   R (h_i + h_j)/2 (mean h_ij), R the kernel radius.
+------------------------------------------------------------------------- */
+
+double PairSPHAstro::atom2cut(int i)
+{
+  // the lists of a run's setup allow every h up to its type's cap: the setup's h iteration
+  // may move h far from the start value; fix sph/astro/h has the lists rebuilt at step 1
+  const double cap = hcap_type_[atom->type[i]];
+  if (update->setupflag) return kernel_radius_ * cap;
+  return kernel_radius_ * MIN(atom->dvector[state_.h][i] * COLLECTION_GROWTH, cap);
+}
+
+double PairSPHAstro::radii2cut(double ri, double rj)
+{
+  return hmode_ == HMode::GRADH ? 2.0 * MAX(ri, rj) : ri + rj;
+}
+
+double PairSPHAstro::h_limit(int i) const
+{
+  const double cap = hcap_type_[atom->type[i]];
+  if (neighbor->style != Neighbor::MULTI || !neighbor->finite_cut_flag || !neighbor->collection)
+    return cap;
+  return MIN(cap, neighbor->collection2cut[neighbor->collection[i]] / kernel_radius_);
 }
 
 /* ---------------------------------------------------------------------- */

@@ -39,6 +39,11 @@ class PairSPHAstro : public Pair {
   int pack_reverse_comm(int, int, double *) override;
   void unpack_reverse_comm(int, int *, double *) override;
 
+  // per-particle neighbour cutoffs for neighbor multi with h collections (fix sph/astro/h
+  // collections): atom i belongs to the collection that covers kernel_radius h_i growth
+  double atom2cut(int) override;
+  double radii2cut(double, double) override;
+
   void *extract(const char *, int &) override;
   void *extract_peratom(const char *, int &) override;
   double memory_usage() override;
@@ -59,6 +64,11 @@ class PairSPHAstro : public Pair {
   int computed_nlocal() const { return computed_nlocal_; }
   // the largest h a particle of this type may take in this run (neighbour list cutoffs)
   double h_cap(int type) const { return hcap_type_[type]; }
+  // the largest h local atom i may take until the next neighbour-list build: h_cap of its
+  // type, or less with h collections (the cutoff of the atom's collection)
+  double h_limit(int i) const;
+  // room an atom's collection leaves for its h to grow before lists are rebuilt
+  static constexpr double COLLECTION_GROWTH = 1.2;
 
  protected:
   SPHAstro::KernelType kernel_ = SPHAstro::KernelType::CUBIC;

@@ -11,6 +11,7 @@
 #include "fix_sph_astro_h.h"
 #include "fix_sph_astro_switch.h"
 #include "pair_sph_astro.h"
+#include "sph_astro_run_command.h"
 #include "sph_astro_state_command.h"
 
 using namespace LAMMPS_NS;
@@ -50,6 +51,11 @@ static Command *state_command_creator(LAMMPS *lmp)
   return new SPHAstroStateCommand(lmp);
 }
 
+static Command *run_command_creator(LAMMPS *lmp)
+{
+  return new SPHAstroRunCommand(lmp);
+}
+
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 {
   lammpsplugin_t plugin;
@@ -77,7 +83,7 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   (*register_plugin)(&plugin, lmp);
 
   plugin.name = "sph/astro/switch";
-  plugin.info = "SPH-ASTRO per-particle viscosity alpha: Morris & Monaghan 1997 switch";
+  plugin.info = "SPH-ASTRO per-particle viscosity alpha: Morris-Monaghan or Cullen-Dehnen";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_sph_astro_switch_creator;
   (*register_plugin)(&plugin, lmp);
 
@@ -96,5 +102,10 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "sph/astro/state";
   plugin.info = "SPH-ASTRO: define the per-particle state now (before read_data)";
   plugin.creator.v1 = (lammpsplugin_factory1 *) &state_command_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.name = "sph/astro/run";
+  plugin.info = "SPH-ASTRO: run, repeated when fix sph/astro/h rebuild asks for new list cutoffs";
+  plugin.creator.v1 = (lammpsplugin_factory1 *) &run_command_creator;
   (*register_plugin)(&plugin, lmp);
 }
