@@ -135,7 +135,7 @@ void PairSPHAstro::settings(int narg, char **arg)
       if (!kernel_from_name(arg[iarg + 1], kernel_))
         error->all(FLERR,
                    "pair_style sph/astro: unknown kernel '{}'; allowed: m4 (cubic), m6 "
-                   "(quintic), wendland/c2, wendland/c4",
+                   "(quintic), wendland/c2, wendland/c4, gaussian",
                    arg[iarg + 1]);
       iarg += 2;
     } else if (key == "eos") {
@@ -874,6 +874,9 @@ void PairSPHAstro::compute(int eflag, int vflag)
       break;
     case KernelType::WENDLAND_C4:
       dispatch_dimension<KernelWendlandC4>();
+      break;
+    case KernelType::GAUSSIAN:
+      dispatch_dimension<KernelGaussian>();
       break;
   }
   if (vflag_fdotr) virial_fdotr_compute();
