@@ -57,6 +57,9 @@ class PairSPHAstro : public Pair {
   int computed_nlocal() const { return computed_nlocal_; }
   // the largest h a particle of this type may take in this run (neighbour list cutoffs)
   double h_cap(int type) const { return hcap_type_[type]; }
+  // physical heat conduction (pair_sph_astro_conduction.cpp): kappa = k / c_v, 0 when off
+  double conduction_kappa() const { return cond_kappa_; }
+  SPHAstro::KernelType kernel_type() const { return kernel_; }
 
  protected:
   SPHAstro::KernelType kernel_ = SPHAstro::KernelType::CUBIC;
@@ -66,6 +69,15 @@ class PairSPHAstro : public Pair {
   double visc_alpha_ = 1.0, visc_beta_ = 2.0, visc_eps_ = 0.01;
   double cond_alpha_ = 0.0;    // artificial conductivity alpha_u (0: off)
   bool balsara_on_ = false;    // Balsara shear limiter of the viscosity
+
+  // physical heat conduction (pair_sph_astro_conduction.cpp): a separate pass after the
+  // force pass, only when kappa > 0; conduct_ holds this step's du/dt from it (owned + ghost)
+  double cond_kappa_ = 0.0;
+  double *conduct_ = nullptr;
+  int conduct_nmax_ = 0;
+  void conduction_pass();
+  template <class KERNEL, int DIM, bool GRADH> void conduction_loop();
+  bool ghosts_need_u() const;
 
   // per-particle viscosity alpha of fix sph/astro/switch (owned + ghost), null without it;
   // beta follows as (beta / alpha) x alpha_i
@@ -103,7 +115,7 @@ class PairSPHAstro : public Pair {
   bigint computed_step_ = -1;
   int computed_nlocal_ = -1;
 
-  enum class Stage { DENSITY, FORCE, SMOOTHING_LENGTH, VELOCITY, CURL };
+  enum class Stage { DENSITY, FORCE, SMOOTHING_LENGTH, VELOCITY, CURL, CONDUCTION };
   Stage comm_stage_ = Stage::DENSITY;
 
   void allocate();
