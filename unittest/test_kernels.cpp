@@ -134,8 +134,8 @@ TEST(KernelValues, GaussianMatchesSeedInsideTheSupport)
   }
   // the slope at the edge is not zero: -6 exp(-9) (in units of sigma / h^(d+1))
   const double sigma3 = kernel_W(KernelType::GAUSSIAN, 3, 0.0, 1.0) / (1.0 - e9);
-  EXPECT_NEAR(kernel_dWdr(KernelType::GAUSSIAN, 3, 3.0 * (1.0 - 1e-12), 1.0) / sigma3,
-              -6.0 * e9, 1e-12);
+  EXPECT_NEAR(kernel_dWdr(KernelType::GAUSSIAN, 3, 3.0 * (1.0 - 1e-12), 1.0) / sigma3, -6.0 * e9,
+              1e-12);
   EXPECT_EQ(kernel_dWdr(KernelType::GAUSSIAN, 3, 3.0, 1.0), 0.0);
 }
 

@@ -19,8 +19,8 @@ enum { MASS, PX, PY, PZ, LX, LY, LZ, EKIN, ETHERM, EPOT, ETOT, DEREL };
 
 double **fix_array(const std::unique_ptr<LAMMPS> &lmp, const char *id)
 {
-  return static_cast<double **>(lammps_extract_fix(lmp.get(), id, LMP_STYLE_ATOM, LMP_TYPE_ARRAY,
-                                                   0, 0));
+  return static_cast<double **>(
+      lammps_extract_fix(lmp.get(), id, LMP_STYLE_ATOM, LMP_TYPE_ARRAY, 0, 0));
 }
 }    // namespace
 
@@ -34,8 +34,7 @@ TEST_P(Conduction, ConservesThermalEnergyPairByPairAndFlowsFromHotToCold)
   auto lmp = open_lammps();
   // disordered gas at rest with u varying by +-20 %: with v = 0 the P dV term vanishes and
   // du/dt is the conduction alone
-  gas(lmp, "box", 3, "sph/astro eos ideal $(5.0/3.0) viscosity none conduction 0.7",
-      "sph/astro");
+  gas(lmp, "box", 3, "sph/astro eos ideal $(5.0/3.0) viscosity none conduction 0.7", "sph/astro");
   if (!GetParam().empty()) commands(lmp, {GetParam()});
   commands(lmp, {"velocity all set 0.0 0.0 0.0", "run 0"});
   const auto u = per_atom(lmp, "u");
@@ -65,9 +64,10 @@ TEST(Conduction, RateIsKappaOverRhoTimesTheLaplacian)
   auto lmp = open_lammps();
   gas(lmp, "box", 6, "sph/astro kernel m6 eos ideal $(5.0/3.0) viscosity none conduction 0.5",
       "sph/astro", 1.0, 0.0);
-  commands(lmp, {"set group all d_h " + num(1.0 * std::cbrt(0.25)),
-                 "variable uq atom 1.0+0.01*(x-3.0)^2", "set group all d_u v_uq",
-                 "velocity all set 0.0 0.0 0.0", "run 0"});
+  commands(lmp,
+           {"set group all d_h " + num(1.0 * std::cbrt(0.25)),
+            "variable uq atom 1.0+0.01*(x-3.0)^2", "set group all d_u v_uq",
+            "velocity all set 0.0 0.0 0.0", "run 0"});
   const auto x = per_atom(lmp, "x");
   const auto dudt = per_atom(lmp, "dudt");
   int n = 0;
@@ -93,7 +93,8 @@ TEST(Conduction, TimestepCriterion)
   const auto rho = per_atom(lmp, "rho");
   const auto h = per_atom(lmp, "h");
   double expected = INFINITY;
-  for (const auto &[id, r] : rho) expected = std::min(expected, 0.05 * r * h.at(id) * h.at(id) / 40.0);
+  for (const auto &[id, r] : rho)
+    expected = std::min(expected, 0.05 * r * h.at(id) * h.at(id) / 40.0);
   EXPECT_NEAR(fix->compute_vector(3), expected, 1e-12 * expected);
   // kappa 40 makes conduction the limiting criterion
   EXPECT_DOUBLE_EQ(lmp->update->dt, fix->compute_vector(3));
@@ -150,7 +151,7 @@ TEST(XSPH, CorrectionCarriesNoMomentumAndSmoothsTheVelocity)
   EXPECT_LT(ekin_smoothed, ekin);
 }
 
-// A gas box with random velocities (Mach ~ 0.5) and no dissipation, run to t = 0.2 with fixed
+// A gas box with random velocities (rms Mach ~ 1) and no dissipation, run to t = 0.2 with fixed
 // dt. Returns the relative total energy error and the mean |A/A0 - 1| of the entropic function
 // A = (gamma - 1) u / rho^(gamma - 1), which the equations keep constant without viscosity.
 static std::pair<double, double> xsph_run(double dt, const std::string &xsph)
@@ -167,8 +168,9 @@ static std::pair<double, double> xsph_run(double dt, const std::string &xsph)
     return A;
   };
   const auto A0 = entropy();
-  commands(lmp, {"timestep " + num(dt), "thermo " + std::to_string(nsteps),
-                 "run " + std::to_string(nsteps)});
+  commands(
+      lmp,
+      {"timestep " + num(dt), "thermo " + std::to_string(nsteps), "run " + std::to_string(nsteps)});
   const auto A1 = entropy();
   double drift = 0.0;
   for (const auto &[id, a] : A0) drift += std::fabs(A1.at(id) / a - 1.0);
@@ -190,8 +192,8 @@ TEST(XSPH, EnergyIsKeptButTheFlowIsNoLongerAdiabatic)
          e1, e2, x1, x2, a1, a2, xa1, xa2);
   EXPECT_NEAR(e1 / e2, 4.0, 1.0);
   EXPECT_NEAR(x1 / x2, 4.0, 1.0);
-  EXPECT_GT(xa2, 10.0 * a2);           // entropy drift far above the plain run's
-  EXPECT_GT(xa2, 0.5 * xa1);           // and not falling with dt
+  EXPECT_GT(xa2, 10.0 * a2);    // entropy drift far above the plain run's
+  EXPECT_GT(xa2, 0.5 * xa1);    // and not falling with dt
 }
 
 // ---------------------------------------------------------------- bad input
@@ -202,9 +204,10 @@ class BadPhysicsInput : public ::testing::Test {
   void SetUp() override
   {
     lmp = open_lammps();
-    commands(lmp, {"units lj", "atom_style atomic", "atom_modify map array", "lattice fcc 4.0",
-                   "region box block 0 2 0 2 0 2", "create_box 1 box", "create_atoms 1 box",
-                   "mass 1 0.25"});
+    commands(lmp,
+             {"units lj", "atom_style atomic", "atom_modify map array", "lattice fcc 4.0",
+              "region box block 0 2 0 2 0 2", "create_box 1 box", "create_atoms 1 box",
+              "mass 1 0.25"});
   }
   void expect_error(const std::string &line, const std::string &fragment)
   {
@@ -223,7 +226,8 @@ TEST_F(BadPhysicsInput, KeywordValues)
   expect_error("pair_style sph/astro kernel gauss",
                "unknown kernel 'gauss'; allowed: m4 (cubic), m6 (quintic), wendland/c2, "
                "wendland/c4, gaussian");
-  expect_error("fix gas all sph/astro conduction 0", "fix sph/astro: conduction = 0 must be in (0, 1]");
+  expect_error("fix gas all sph/astro conduction 0",
+               "fix sph/astro: conduction = 0 must be in (0, 1]");
   expect_error("fix gas all sph/astro conduction 1.5", "conduction = 1.5 must be in (0, 1]");
   expect_error("fix gas all sph/astro xsph -0.5",
                "fix sph/astro: xsph = -0.5 must be in [0, 1] (0: off; 0.5 is usual)");
@@ -233,8 +237,9 @@ TEST_F(BadPhysicsInput, KeywordValues)
 
 TEST_F(BadPhysicsInput, ConductionNeedsTheIdealGas)
 {
-  commands(lmp, {"pair_style sph/astro eos isothermal 1.0 conduction 1.0", "pair_coeff * *",
-                 "fix gas all sph/astro", "set group all d_h 0.75"});
+  commands(lmp,
+           {"pair_style sph/astro eos isothermal 1.0 conduction 1.0", "pair_coeff * *",
+            "fix gas all sph/astro", "set group all d_h 0.75"});
   expect_error("run 0",
                "pair_style sph/astro: conduction 1 needs eos ideal (the energy equation); eos "
                "isothermal does not evolve u");

@@ -83,8 +83,7 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg
     } else if (key == "xsph") {
       xsph_eps_ = utils::numeric(FLERR, val, false, lmp);
       if (!(xsph_eps_ >= 0.0) || xsph_eps_ > 1.0)
-        error->all(FLERR, "fix sph/astro: xsph = {} must be in [0, 1] (0: off; 0.5 is usual)",
-                   val);
+        error->all(FLERR, "fix sph/astro: xsph = {} must be in [0, 1] (0: off; 0.5 is usual)", val);
     } else if (key == "dtmax") {
       dtmax_ = utils::numeric(FLERR, val, false, lmp);
       if (!(dtmax_ > 0.0)) error->all(FLERR, "fix sph/astro: dtmax = {} must be > 0", val);

@@ -78,7 +78,7 @@ class FixSPHAstro : public Fix {
 
   // XSPH (fix_sph_astro_xsph.cpp): positions drift with v + eps sum_j m_j / rho_ij (v_j - v_i)
   // W_ij; the correction is computed after each force evaluation over a full neighbour list
-  double xsph_eps_ = 0.0;    // 0: off (no list, no pass)
+  double xsph_eps_ = 0.0;      // 0: off (no list, no pass)
   double **xsph_ = nullptr;    // per-atom correction (owned atoms), also the fix's per-atom output
   int xsph_nmax_ = 0;
   class NeighList *xsph_list_ = nullptr;

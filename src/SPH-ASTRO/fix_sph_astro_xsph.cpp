@@ -97,12 +97,12 @@ void FixSPHAstro::xsph_correction()
   // atoms outside the list (none for a list of all atoms) keep a zero correction
   for (int i = 0; i < atom->nlocal; i++) xsph_[i][0] = xsph_[i][1] = xsph_[i][2] = 0.0;
   const bool d2 = domain->dimension == 2;
-#define SPH_ASTRO_XSPH(KT)        \
-  {                               \
-    if (d2)                       \
-      xsph_loop<KT, 2>();         \
-    else                          \
-      xsph_loop<KT, 3>();         \
+#define SPH_ASTRO_XSPH(KT) \
+  {                        \
+    if (d2)                \
+      xsph_loop<KT, 2>();  \
+    else                   \
+      xsph_loop<KT, 3>();  \
   }
   switch (pair_->kernel_type()) {
     case KernelType::CUBIC:

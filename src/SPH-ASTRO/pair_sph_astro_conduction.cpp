@@ -73,10 +73,10 @@ template <class KERNEL, int DIM, bool GRADH> void PairSPHAstro::conduction_loop(
         if ((r2 >= hR2i && r2 >= hR2j) || r2 == 0.0) continue;
         const double r = std::sqrt(r2);
         const double hinvi = 1.0 / hi, hinvj = 1.0 / hj;
-        const double dwi =
-            r2 < hR2i ? sigma * inv_h_pow_dim<DIM>(hinvi) * hinvi * K::dw(r * hinvi) : 0.0;
-        const double dwj =
-            r2 < hR2j ? sigma * inv_h_pow_dim<DIM>(hinvj) * hinvj * K::dw(r * hinvj) : 0.0;
+        const double dwi = r2 < hR2i ? sigma * inv_h_pow_dim<DIM>(hinvi) * hinvi * K::dw(r * hinvi)
+                                     : 0.0;
+        const double dwj = r2 < hR2j ? sigma * inv_h_pow_dim<DIM>(hinvj) * hinvj * K::dw(r * hinvj)
+                                     : 0.0;
         dwdr_r = 0.5 * (dwi + dwj) / r;
       } else {
         const double hij = 0.5 * (hi + hj);
@@ -107,11 +107,11 @@ void PairSPHAstro::conduction_pass()
   }
   const bool gradh = hmode_ == HMode::GRADH;
   const bool d2 = domain->dimension == 2;
-#define SPH_ASTRO_COND(KT)                                             \
-  {                                                                    \
-    if (gradh)                                                         \
-      d2 ? conduction_loop<KT, 2, true>() : conduction_loop<KT, 3, true>(); \
-    else                                                               \
+#define SPH_ASTRO_COND(KT)                                                    \
+  {                                                                           \
+    if (gradh)                                                                \
+      d2 ? conduction_loop<KT, 2, true>() : conduction_loop<KT, 3, true>();   \
+    else                                                                      \
       d2 ? conduction_loop<KT, 2, false>() : conduction_loop<KT, 3, false>(); \
   }
   switch (kernel_) {
