@@ -12,7 +12,7 @@ using namespace SPHAstro;
 
 namespace {
 const KernelType all_kernels[] = {KernelType::CUBIC, KernelType::QUINTIC, KernelType::WENDLAND_C2,
-                                  KernelType::WENDLAND_C4};
+                                  KernelType::WENDLAND_C4, KernelType::GAUSSIAN};
 
 // integral over d-dimensional space of a radial function: surface area of the
 // unit sphere times r^(d-1), by composite Simpson on [0, R h] with n intervals
@@ -46,7 +46,9 @@ TEST_P(KernelTest, CompactSupportAndPositive)
 {
   const auto [k, dim] = GetParam();
   const double h = 0.7, R = kernel_radius(k) * h;
-  EXPECT_NEAR(kernel_W(k, dim, R, h), 0.0, 1e-60);    // q = R up to round-off
+  // q = R up to round-off (the shifted Gaussian is exp(-q^2) - exp(-9): round-off of q
+  // leaves ~1e-19 W(0))
+  EXPECT_NEAR(kernel_W(k, dim, R, h), 0.0, 1e-15 * kernel_W(k, dim, 0.0, h));
   EXPECT_EQ(kernel_W(k, dim, R * (1.0 + 1e-12), h), 0.0);
   EXPECT_EQ(kernel_W(k, dim, 1.5 * R, h), 0.0);
   EXPECT_EQ(kernel_dWdr(k, dim, R * 1.01, h), 0.0);
@@ -114,6 +116,27 @@ TEST(KernelValues, CubicSplineMatchesSeed)
   EXPECT_NEAR(kernel_W(KernelType::CUBIC, 3, 1.0, h),
               (1 - 1.5 * 0.25 + 0.75 * 0.125) / (M_PI * 8.0), 1e-15);
   EXPECT_NEAR(kernel_W(KernelType::CUBIC, 3, 3.0, h), 0.25 * 0.125 / (M_PI * 8.0), 1e-15);
+}
+
+TEST(KernelValues, GaussianMatchesSeedInsideTheSupport)
+{
+  // seeds 000/001: W = (h sqrt(pi))^-d exp(-r^2/h^2); the truncated, shifted kernel is
+  // sigma_d h^-d (exp(-q^2) - exp(-9)) with sigma_d 0.04-0.3 % above pi^(-d/2)
+  const double h = 0.8, e9 = std::exp(-9.0);
+  for (int dim : {1, 2, 3}) {
+    const double seed0 = std::pow(h * std::sqrt(M_PI), -dim);
+    const double sigma_ratio = kernel_W(KernelType::GAUSSIAN, dim, 0.0, h) / (seed0 * (1.0 - e9));
+    EXPECT_NEAR(sigma_ratio, 1.0, 3.5e-3) << dim;
+    EXPECT_GT(sigma_ratio, 1.0) << "truncation removes mass: sigma must grow";
+    for (double q : {0.3, 1.0, 2.0, 2.9})
+      EXPECT_NEAR(kernel_W(KernelType::GAUSSIAN, dim, q * h, h),
+                  sigma_ratio * seed0 * (std::exp(-q * q) - e9), 1e-14 * seed0);
+  }
+  // the slope at the edge is not zero: -6 exp(-9) (in units of sigma / h^(d+1))
+  const double sigma3 = kernel_W(KernelType::GAUSSIAN, 3, 0.0, 1.0) / (1.0 - e9);
+  EXPECT_NEAR(kernel_dWdr(KernelType::GAUSSIAN, 3, 3.0 * (1.0 - 1e-12), 1.0) / sigma3, -6.0 * e9,
+              1e-12);
+  EXPECT_EQ(kernel_dWdr(KernelType::GAUSSIAN, 3, 3.0, 1.0), 0.0);
 }
 
 TEST(KernelValues, NeighbourCountForHfact)

@@ -740,8 +740,8 @@ class KernelInLAMMPS : public ::testing::TestWithParam<std::tuple<std::string, i
 TEST_P(KernelInLAMMPS, LatticeDensity)
 {
   const auto [kernel, dim] = GetParam();
-  // hfact giving about 58 (3D) or 20 (2D) neighbours for support 2h; 3h for m6
-  const double radius = kernel == "m6" ? 3.0 : 2.0;
+  // hfact giving about 58 (3D) or 20 (2D) neighbours for support 2h; 3h for m6 and gaussian
+  const double radius = (kernel == "m6" || kernel == "gaussian") ? 3.0 : 2.0;
   const double hfact = (dim == 3 ? 2.4 : 2.6) / radius;
   auto lmp = open_lammps();
   if (dim == 3) {
@@ -777,7 +777,7 @@ TEST_P(KernelInLAMMPS, LatticeDensity)
 
 INSTANTIATE_TEST_SUITE_P(AllKernels, KernelInLAMMPS,
                          ::testing::Combine(::testing::Values("m4", "m6", "wendland/c2",
-                                                              "wendland/c4"),
+                                                              "wendland/c4", "gaussian"),
                                             ::testing::Values(2, 3)));
 
 TEST(PairSPHAstro, BarotropicEquationsOfState)

@@ -10,7 +10,8 @@
 //   v^{n+1} = v^{n+1/2} + dt/2 a^{n+1},  u^{n+1} = u^{n+1/2} + dt/2 du^{n+1}
 // Adaptive global timestep (seed 000, "criteria for choosing the timestep"):
 //   dt_cv = C h / (c + h|div v| + 1.2 (alpha c + beta h |div v|)),  dt_f = C_f sqrt(h / |a|)
-// and, for the ideal gas, dt_u = C_u u / |du/dt| where du/dt < 0 (keeps u positive).
+// and, for the ideal gas, dt_u = C_u u / |du/dt| where du/dt < 0 (keeps u positive); with
+// physical heat conduction dt_k = C_k rho h^2 / kappa (sph_astro_conduction.h).
 
 #include "fix_sph_astro.h"
 
@@ -20,9 +21,14 @@
 #include "comm.h"
 #include "error.h"
 #include "force.h"
+#include "memory.h"
 #include "modify.h"
+#include "neigh_list.h"
+#include "neigh_request.h"
+#include "neighbor.h"
 #include "output.h"
 #include "pair_sph_astro.h"
+#include "sph_astro_conduction.h"
 #include "timer.h"
 #include "update.h"
 #include "utils.h"
@@ -40,8 +46,8 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg
   time_integrate = 1;
   restart_global = 1;
   scalar_flag = 1;    // current dt
-  vector_flag = 1;    // [dt_courant, dt_force, dt_energy]
-  size_vector = 3;
+  vector_flag = 1;    // [dt_courant, dt_force, dt_energy, dt_conduction]
+  size_vector = 4;
   global_freq = 1;
   extscalar = 0;
   extvector = 0;
@@ -70,6 +76,14 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg
       energy_factor_ = utils::numeric(FLERR, val, false, lmp);
       if (energy_factor_ < 0.0 || energy_factor_ > 1.0)
         error->all(FLERR, "fix sph/astro: energy = {} must be in [0, 1] (0: no u criterion)", val);
+    } else if (key == "conduction") {
+      cond_factor_ = utils::numeric(FLERR, val, false, lmp);
+      if (!(cond_factor_ > 0.0) || cond_factor_ > 1.0)
+        error->all(FLERR, "fix sph/astro: conduction = {} must be in (0, 1]", val);
+    } else if (key == "xsph") {
+      xsph_eps_ = utils::numeric(FLERR, val, false, lmp);
+      if (!(xsph_eps_ >= 0.0) || xsph_eps_ > 1.0)
+        error->all(FLERR, "fix sph/astro: xsph = {} must be in [0, 1] (0: off; 0.5 is usual)", val);
     } else if (key == "dtmax") {
       dtmax_ = utils::numeric(FLERR, val, false, lmp);
       if (!(dtmax_ > 0.0)) error->all(FLERR, "fix sph/astro: dtmax = {} must be > 0", val);
@@ -89,7 +103,7 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg
     } else
       error->all(FLERR,
                  "fix sph/astro: unknown keyword '{}'; allowed: thermal, courant, force, energy, "
-                 "dtmax, dtmin, tend, dt",
+                 "conduction, xsph, dtmax, dtmin, tend, dt",
                  key);
     iarg += 2;
   }
@@ -102,11 +116,23 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg
     error->all(FLERR, "fix sph/astro needs atom IDs (atom_modify id yes) to report atoms");
   if (dtmin_ > 0.0 && dtmax_ > 0.0 && dtmin_ > dtmax_)
     error->all(FLERR, "fix sph/astro: dtmin {} is larger than dtmax {}", dtmin_, dtmax_);
+  if (xsph_eps_ > 0.0) {    // per-atom output: the XSPH velocity correction
+    peratom_flag = 1;
+    size_peratom_cols = 3;
+    peratom_freq = 1;
+  }
+}
+
+FixSPHAstro::~FixSPHAstro()
+{
+  memory->destroy(xsph_);
 }
 
 int FixSPHAstro::setmask()
 {
-  return INITIAL_INTEGRATE | FINAL_INTEGRATE | END_OF_STEP;
+  int mask = INITIAL_INTEGRATE | FINAL_INTEGRATE | END_OF_STEP;
+  if (xsph_eps_ > 0.0) mask |= POST_FORCE;    // XSPH correction after the forces
+  return mask;
 }
 
 void FixSPHAstro::post_constructor()
@@ -137,6 +163,7 @@ void FixSPHAstro::init()
   }
   auto hfixes = modify->get_fix_by_style("^sph/astro/h$");
   hfix_ = hfixes.empty() ? nullptr : dynamic_cast<FixSPHAstroH *>(hfixes.front());
+  if (xsph_eps_ > 0.0) neighbor->add_request(this, NeighConst::REQ_FULL);
   if (modify->get_fix_by_style("^sph/astro$").size() > 1)
     error->all(FLERR,
                "fix sph/astro: only one instance is allowed (it sets the global timestep); use "
@@ -173,6 +200,7 @@ void FixSPHAstro::setup(int /*vflag*/)
     timer->force_timeout();
     return;
   }
+  if (xsph_eps_ > 0.0) xsph_correction();    // for the first drift
   // fixes defined after this one add their setup forces later: the first step's dt is taken
   // again at the start of step 1, when all forces are in
   next_timestep();
@@ -208,6 +236,7 @@ void FixSPHAstro::initial_integrate(int /*vflag*/)
   double *Aest = entropy_ ? atom->dvector[entropy_index_.Aest] : nullptr;
   const double *dAdt = entropy_ ? atom->dvector[entropy_index_.dAdt] : nullptr;
   const int nlocal = atom->nlocal;
+  double **dv_xsph = xsph_eps_ > 0.0 ? xsph_ : nullptr;    // drift velocity correction
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) {
@@ -223,6 +252,8 @@ void FixSPHAstro::initial_integrate(int /*vflag*/)
       vest[i][d] = v[i][d] + dtfm * f[i][d];
       x[i][d] += dt * v[i][d];
     }
+    if (dv_xsph)    // XSPH: dx/dt = v + eps sum_j m_j / rho_ij (v_j - v_i) W_ij
+      for (int d = 0; d < 3; d++) x[i][d] += dt * dv_xsph[i][d];
     if (entropy_) {
       A[i] += dtf * dAdt[i];
       Aest[i] = A[i] + dtf * dAdt[i];
@@ -361,13 +392,19 @@ void FixSPHAstro::next_timestep(bool from_end_of_step)
     const double *u = atom->dvector[state_.u];
     const double *dudt = atom->dvector[state_.dudt];
     const bool energy_limit = evolve_u_ && energy_factor_ > 0.0;
+    const double kappa = pair_->conduction_kappa();    // physical heat conduction, 0: off
+    const double *rho = atom->dvector[state_.rho];
 
     // minimum over particles of each criterion, with the rank of the limiting atom
     struct {
       double value;
       int rank;
-    } mine[3] = {{INFINITY, comm->me}, {INFINITY, comm->me}, {INFINITY, comm->me}}, all[3];
-    tagint limiting[3] = {0, 0, 0};
+    } mine[4] = {{INFINITY, comm->me},
+                 {INFINITY, comm->me},
+                 {INFINITY, comm->me},
+                 {INFINITY, comm->me}},
+      all[4];
+    tagint limiting[4] = {0, 0, 0, 0};
     for (int i = 0; i < nlocal; i++) {
       if (!(mask[i] & groupbit)) continue;
       double vsig;
@@ -403,13 +440,22 @@ void FixSPHAstro::next_timestep(bool from_end_of_step)
           limiting[2] = atom->tag[i];
         }
       }
+      // explicit heat conduction: dt_k = C_k rho h^2 / kappa (sph_astro_conduction.h)
+      if (kappa > 0.0) {
+        const double dtk = conduction_timestep(cond_factor_, rho[i], h[i], kappa);
+        if (dtk < mine[3].value) {
+          mine[3].value = dtk;
+          limiting[3] = atom->tag[i];
+        }
+      }
     }
-    MPI_Allreduce(mine, all, 3, MPI_DOUBLE_INT, MPI_MINLOC, world);
+    MPI_Allreduce(mine, all, 4, MPI_DOUBLE_INT, MPI_MINLOC, world);
     last_dt_cv_ = all[0].value;
     last_dt_force_ = all[1].value;
     last_dt_energy_ = all[2].value;
+    last_dt_cond_ = all[3].value;
     int which = 0;
-    for (int k = 1; k < 3; k++)
+    for (int k = 1; k < 4; k++)
       if (all[k].value < all[which].value) which = k;
     const double dtnew = all[which].value;
     last_limiting_atom_ = limiting[which];
@@ -420,9 +466,9 @@ void FixSPHAstro::next_timestep(bool from_end_of_step)
     if (dtmin_ > 0.0 && dt < dtmin_)
       error->all(FLERR,
                  "fix sph/astro: timestep {} fell below dtmin = {} at step {} (limited by atom "
-                 "{}: Courant dt {}, force dt {}, energy dt {})",
+                 "{}: Courant dt {}, force dt {}, energy dt {}, conduction dt {})",
                  dt, dtmin_, update->ntimestep, last_limiting_atom_, last_dt_cv_, last_dt_force_,
-                 last_dt_energy_);
+                 last_dt_energy_, last_dt_cond_);
   }
   if (tend_ > 0.0) {
     const double remaining = tend_ - current_time();
@@ -457,7 +503,8 @@ double FixSPHAstro::compute_scalar()
 
 double FixSPHAstro::compute_vector(int n)
 {
-  return n == 0 ? last_dt_cv_ : (n == 1 ? last_dt_force_ : last_dt_energy_);
+  const double values[4] = {last_dt_cv_, last_dt_force_, last_dt_energy_, last_dt_cond_};
+  return values[n];
 }
 
 double FixSPHAstro::reference_energy(const std::string &compute_id, double current)

@@ -23,6 +23,7 @@ namespace LAMMPS_NS {
 class FixSPHAstro : public Fix {
  public:
   FixSPHAstro(class LAMMPS *, int, char **);
+  ~FixSPHAstro() override;
 
   int setmask() override;
   void post_constructor() override;
@@ -30,6 +31,8 @@ class FixSPHAstro : public Fix {
   void setup(int) override;
   void initial_integrate(int) override;
   void final_integrate() override;
+  void post_force(int) override;
+  void init_list(int, class NeighList *) override;
   void end_of_step() override;
   void post_run() override;
   double compute_scalar() override;
@@ -51,6 +54,7 @@ class FixSPHAstro : public Fix {
   double courant_ = 0.3;          // C in dt = C h / (c + h|div v| + 1.2 (alpha c + beta h|div v|))
   double force_factor_ = 0.3;     // C_f in dt = C_f sqrt(h / |a|)
   double energy_factor_ = 0.3;    // C_u in dt = C_u u / |du/dt| (where du/dt < 0)
+  double cond_factor_ = 0.1;      // C_k in dt = C_k rho h^2 / kappa (pair conduction KAPPA)
   double dtmax_ = 0.0;            // 0: no upper bound
   double dtmin_ = 0.0;            // 0: no lower bound (a step below it is an error)
   double tend_ = -1.0;            // < 0: no end time
@@ -72,7 +76,16 @@ class FixSPHAstro : public Fix {
   bool dt_pending_ = false;    // first dt of a run: set once all setup forces are in
   double user_dt_ = 0.0;       // with dt fixed: the step to restore after a tend clip
 
-  double last_dt_cv_ = 0.0, last_dt_force_ = 0.0, last_dt_energy_ = 0.0;
+  // XSPH (fix_sph_astro_xsph.cpp): positions drift with v + eps sum_j m_j / rho_ij (v_j - v_i)
+  // W_ij; the correction is computed after each force evaluation over a full neighbour list
+  double xsph_eps_ = 0.0;      // 0: off (no list, no pass)
+  double **xsph_ = nullptr;    // per-atom correction (owned atoms), also the fix's per-atom output
+  int xsph_nmax_ = 0;
+  class NeighList *xsph_list_ = nullptr;
+  void xsph_correction();
+  template <class KERNEL, int DIM> void xsph_loop();
+
+  double last_dt_cv_ = 0.0, last_dt_force_ = 0.0, last_dt_energy_ = 0.0, last_dt_cond_ = 0.0;
   tagint last_limiting_atom_ = 0;
 
   void next_timestep(bool from_end_of_step = false);

@@ -69,6 +69,7 @@ PairSPHAstro::~PairSPHAstro()
   memory->destroy(balsara_);
   memory->destroy(vsigmax_);
   memory->destroy(hcap_type_);
+  memory->destroy(conduct_);
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
@@ -132,6 +133,7 @@ void PairSPHAstro::settings(int narg, char **arg)
   cond_alpha_ = 0.0;
   balsara_on_ = false;
   visc_signal_ = false;
+  cond_kappa_ = 0.0;
   int iarg = 0;
   while (iarg < narg) {
     const std::string key = arg[iarg];
@@ -140,7 +142,7 @@ void PairSPHAstro::settings(int narg, char **arg)
       if (!kernel_from_name(arg[iarg + 1], kernel_))
         error->all(FLERR,
                    "pair_style sph/astro: unknown kernel '{}'; allowed: m4 (cubic), m6 "
-                   "(quintic), wendland/c2, wendland/c4",
+                   "(quintic), wendland/c2, wendland/c4, gaussian",
                    arg[iarg + 1]);
       iarg += 2;
     } else if (key == "eos") {
@@ -237,6 +239,16 @@ void PairSPHAstro::settings(int narg, char **arg)
         error->all(FLERR, "pair_style sph/astro: conductivity alpha_u = {} must be >= 0",
                    arg[iarg + 1]);
       iarg += 2;
+    } else if (key == "conduction") {
+      // physical heat conduction kappa = k / c_v (pair_sph_astro_conduction.cpp)
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_style sph/astro conduction", error);
+      cond_kappa_ = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(cond_kappa_ >= 0.0) || !std::isfinite(cond_kappa_))
+        error->all(FLERR,
+                   "pair_style sph/astro: conduction kappa = {} must be finite and >= 0 (0: no "
+                   "heat conduction)",
+                   arg[iarg + 1]);
+      iarg += 2;
     } else if (key == "epsilon") {
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_style sph/astro epsilon", error);
       visc_eps_ = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
@@ -246,7 +258,7 @@ void PairSPHAstro::settings(int narg, char **arg)
     } else
       error->all(FLERR,
                  "pair_style sph/astro: unknown keyword '{}'; allowed: kernel, eos, viscosity, "
-                 "balsara, conductivity, epsilon",
+                 "balsara, conductivity, conduction, epsilon",
                  key);
   }
   kernel_radius_ = SPHAstro::kernel_radius(kernel_);
@@ -311,6 +323,12 @@ void PairSPHAstro::init_style()
                    "pair_style sph/astro: conductivity {} has no effect with eos {} (only the "
                    "ideal gas evolves u)",
                    cond_alpha_, eos_.type == EOSType::ISOTHERMAL ? "isothermal" : "polytropic");
+
+  if (cond_kappa_ > 0.0 && !eos_.uses_energy())
+    error->all(FLERR,
+               "pair_style sph/astro: conduction {} needs eos ideal (the energy equation); eos {} "
+               "does not evolve u",
+               cond_kappa_, eos_.type == EOSType::ISOTHERMAL ? "isothermal" : "polytropic");
 
   auto switches = modify->get_fix_by_style("^sph/astro/switch$");
   switch_ = switches.empty() ? nullptr : dynamic_cast<FixSPHAstroSwitch *>(switches.front());
@@ -917,7 +935,11 @@ void PairSPHAstro::compute(int eflag, int vflag)
     case KernelType::WENDLAND_C4:
       dispatch_dimension<KernelWendlandC4>();
       break;
+    case KernelType::GAUSSIAN:
+      dispatch_dimension<KernelGaussian>();
+      break;
   }
+  if (cond_kappa_ > 0.0) conduction_pass();    // physical heat conduction, its own pass
   if (vflag_fdotr) virial_fdotr_compute();
   computed_step_ = update->ntimestep;
   computed_nlocal_ = atom->nlocal;
@@ -944,7 +966,7 @@ int PairSPHAstro::pack_forward_comm(int n, int *list, double *buf, int /*pbc_fla
     return m;
   }
   const bool gradh = hmode_ == HMode::GRADH;
-  const bool cond = cond_alpha_ > 0.0 && eos_.uses_energy();
+  const bool cond = ghosts_need_u();
   const double *uest = atom->dvector[state_.uest];
   for (int k = 0; k < n; k++) {
     const int j = list[k];
@@ -984,7 +1006,7 @@ void PairSPHAstro::unpack_forward_comm(int n, int first, double *buf)
     return;
   }
   const bool gradh = hmode_ == HMode::GRADH;
-  const bool cond = cond_alpha_ > 0.0 && eos_.uses_energy();
+  const bool cond = ghosts_need_u();
   double *uest = atom->dvector[state_.uest];
   for (int i = first; i < first + n; i++) {
     rho[i] = buf[m++];
@@ -1006,6 +1028,10 @@ void PairSPHAstro::unpack_forward_comm(int n, int first, double *buf)
 int PairSPHAstro::pack_reverse_comm(int n, int first, double *buf)
 {
   int m = 0;
+  if (comm_stage_ == Stage::CONDUCTION) {
+    for (int i = first; i < first + n; i++) buf[m++] = conduct_[i];
+    return m;
+  }
   if (comm_stage_ == Stage::CURL) {
     for (int i = first; i < first + n; i++)
       for (int k = 0; k < 4; k++) buf[m++] = dcurl_[i][k];
@@ -1032,6 +1058,10 @@ int PairSPHAstro::pack_reverse_comm(int n, int first, double *buf)
 void PairSPHAstro::unpack_reverse_comm(int n, int *list, double *buf)
 {
   int m = 0;
+  if (comm_stage_ == Stage::CONDUCTION) {
+    for (int k = 0; k < n; k++) conduct_[list[k]] += buf[m++];
+    return;
+  }
   if (comm_stage_ == Stage::CURL) {
     for (int k = 0; k < n; k++)
       for (int c = 0; c < 4; c++) dcurl_[list[k]][c] += buf[m++];
@@ -1086,6 +1116,7 @@ void PairSPHAstro::write_restart_settings(FILE *fp)
   double dval[7] = {eos_.gamma, eos_.cs, eos_.K, visc_alpha_, visc_beta_, visc_eps_, cond_alpha_};
   fwrite(ival, sizeof(int), 3, fp);
   fwrite(dval, sizeof(double), 7, fp);
+  fwrite(&cond_kappa_, sizeof(double), 1, fp);    // physical heat conduction
 }
 
 void PairSPHAstro::read_restart_settings(FILE *fp)
@@ -1095,7 +1126,9 @@ void PairSPHAstro::read_restart_settings(FILE *fp)
   if (comm->me == 0) {
     utils::sfread(FLERR, ival, sizeof(int), 3, fp, nullptr, error);
     utils::sfread(FLERR, dval, sizeof(double), 7, fp, nullptr, error);
+    utils::sfread(FLERR, &cond_kappa_, sizeof(double), 1, fp, nullptr, error);
   }
+  MPI_Bcast(&cond_kappa_, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(ival, 3, MPI_INT, 0, world);
   MPI_Bcast(dval, 7, MPI_DOUBLE, 0, world);
   kernel_ = static_cast<KernelType>(ival[0]);
@@ -1174,5 +1207,5 @@ void *PairSPHAstro::extract_peratom(const char *name, int &ncol)
 
 double PairSPHAstro::memory_usage()
 {
-  return 6.0 * nmax_ * sizeof(double) + Pair::memory_usage();
+  return 6.0 * nmax_ * sizeof(double) + conduct_nmax_ * sizeof(double) + Pair::memory_usage();
 }

@@ -69,6 +69,9 @@ class PairSPHAstro : public Pair {
   double h_limit(int i) const;
   // room an atom's collection leaves for its h to grow before lists are rebuilt
   static constexpr double COLLECTION_GROWTH = 1.2;
+  // physical heat conduction (pair_sph_astro_conduction.cpp): kappa = k / c_v, 0 when off
+  double conduction_kappa() const { return cond_kappa_; }
+  SPHAstro::KernelType kernel_type() const { return kernel_; }
 
  protected:
   SPHAstro::KernelType kernel_ = SPHAstro::KernelType::CUBIC;
@@ -80,6 +83,15 @@ class PairSPHAstro : public Pair {
   bool balsara_on_ = false;     // Balsara shear limiter of the viscosity
   bool visc_signal_ = false;    // signal-velocity form (Monaghan 1997) instead of classic
   bool curl_on_ = false;        // curl v needed this run (Balsara or Cullen-Dehnen switch)
+
+  // physical heat conduction (pair_sph_astro_conduction.cpp): a separate pass after the
+  // force pass, only when kappa > 0; conduct_ holds this step's du/dt from it (owned + ghost)
+  double cond_kappa_ = 0.0;
+  double *conduct_ = nullptr;
+  int conduct_nmax_ = 0;
+  void conduction_pass();
+  template <class KERNEL, int DIM, bool GRADH> void conduction_loop();
+  bool ghosts_need_u() const;
 
   // per-particle viscosity alpha of fix sph/astro/switch (owned + ghost), null without it;
   // beta follows as (beta / alpha) x alpha_i
@@ -118,7 +130,7 @@ class PairSPHAstro : public Pair {
   bigint computed_step_ = -1;
   int computed_nlocal_ = -1;
 
-  enum class Stage { DENSITY, FORCE, SMOOTHING_LENGTH, VELOCITY, CURL };
+  enum class Stage { DENSITY, FORCE, SMOOTHING_LENGTH, VELOCITY, CURL, CONDUCTION };
   Stage comm_stage_ = Stage::DENSITY;
 
   void allocate();

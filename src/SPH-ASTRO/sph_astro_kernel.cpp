@@ -40,6 +40,8 @@ double kernel_W(KernelType type, int dim, double r, double h)
       return W_dim<KernelWendlandC2>(dim, r, h);
     case KernelType::WENDLAND_C4:
       return W_dim<KernelWendlandC4>(dim, r, h);
+    case KernelType::GAUSSIAN:
+      return W_dim<KernelGaussian>(dim, r, h);
   }
   return 0.0;
 }
@@ -55,6 +57,8 @@ double kernel_dWdr(KernelType type, int dim, double r, double h)
       return dW_dim<KernelWendlandC2>(dim, r, h);
     case KernelType::WENDLAND_C4:
       return dW_dim<KernelWendlandC4>(dim, r, h);
+    case KernelType::GAUSSIAN:
+      return dW_dim<KernelGaussian>(dim, r, h);
   }
   return 0.0;
 }
@@ -70,6 +74,8 @@ double kernel_radius(KernelType type)
       return KernelWendlandC2::radius;
     case KernelType::WENDLAND_C4:
       return KernelWendlandC4::radius;
+    case KernelType::GAUSSIAN:
+      return KernelGaussian::radius;
   }
   return 0.0;
 }
@@ -85,6 +91,8 @@ const char *kernel_name(KernelType type)
       return KernelWendlandC2::name;
     case KernelType::WENDLAND_C4:
       return KernelWendlandC4::name;
+    case KernelType::GAUSSIAN:
+      return KernelGaussian::name;
   }
   return "";
 }
@@ -92,7 +100,7 @@ const char *kernel_name(KernelType type)
 bool kernel_from_name(const char *name, KernelType &type)
 {
   const KernelType all[] = {KernelType::CUBIC, KernelType::QUINTIC, KernelType::WENDLAND_C2,
-                            KernelType::WENDLAND_C4};
+                            KernelType::WENDLAND_C4, KernelType::GAUSSIAN};
   for (auto k : all)
     if (strcmp(name, kernel_name(k)) == 0) {
       type = k;
