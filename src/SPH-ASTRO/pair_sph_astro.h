@@ -46,6 +46,7 @@ class PairSPHAstro : public Pair {
   // physics settings read by the package's fixes and computes
   const SPHAstro::EOS &eos() const { return eos_; }
   double kernel_radius() const { return kernel_radius_; }    // support = kernel_radius * h
+  SPHAstro::KernelType kernel_type() const { return kernel_; }
   double alpha() const { return visc_alpha_; }
   double beta() const { return visc_beta_; }
   bool has_viscosity() const { return visc_on_; }
