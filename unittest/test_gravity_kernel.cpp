@@ -75,7 +75,8 @@ TEST_P(SoftenedGravityTest, ForceAndPotentialMatchNumericalIntegration)
           << kernel_name(k) << " h " << h << " r " << r;
       if (i % 4 == 0) {
         const double pref = potential_numerical(k, r, h);
-        EXPECT_NEAR(phi, pref, 1e-9 * std::fabs(pref)) << kernel_name(k) << " h " << h << " r " << r;
+        EXPECT_NEAR(phi, pref, 1e-9 * std::fabs(pref))
+            << kernel_name(k) << " h " << h << " r " << r;
       }
     }
   }

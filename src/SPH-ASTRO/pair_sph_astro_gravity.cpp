@@ -113,8 +113,8 @@ void PairSPHAstroGravity::settings(int narg, char **arg)
                    "masses need a softening length)",
                    arg[iarg + 1]);
     } else
-      error->all(FLERR,
-                 "pair_style sph/astro/gravity: unknown keyword '{}'; allowed: G, kernel, h", key);
+      error->all(FLERR, "pair_style sph/astro/gravity: unknown keyword '{}'; allowed: G, kernel, h",
+                 key);
     iarg += 2;
   }
   resolve_gravity_constant();
@@ -271,14 +271,20 @@ void PairSPHAstroGravity::compute(int eflag, int vflag)
   if (have_state_) comm->forward_comm(this);
   const bool cubic = kernel_ == KernelType::CUBIC;
   if (split_ == Split::NONE) {
-    if (cubic) eval<true, 0>(eflag, vflag);
-    else eval<false, 0>(eflag, vflag);
+    if (cubic)
+      eval<true, 0>(eflag, vflag);
+    else
+      eval<false, 0>(eflag, vflag);
   } else if (split_ == Split::EWALD) {
-    if (cubic) eval<true, 1>(eflag, vflag);
-    else eval<false, 1>(eflag, vflag);
+    if (cubic)
+      eval<true, 1>(eflag, vflag);
+    else
+      eval<false, 1>(eflag, vflag);
   } else {
-    if (cubic) eval<true, 2>(eflag, vflag);
-    else eval<false, 2>(eflag, vflag);
+    if (cubic)
+      eval<true, 2>(eflag, vflag);
+    else
+      eval<false, 2>(eflag, vflag);
   }
   if (vflag_fdotr) virial_fdotr_compute();
 }

@@ -35,8 +35,7 @@ void PPPMSPHAstroGravity::init()
                "{}: boundary {} is not periodic in x, y and z; PPPM needs boundary p p p (for "
                "open boundaries use kspace_style msm/sph/astro/gravity)",
                STYLE, boundary_string(lmp));
-  if (slabflag)
-    error->all(FLERR, "{}: kspace_modify slab is not supported for gravity", STYLE);
+  if (slabflag) error->all(FLERR, "{}: kspace_modify slab is not supported for gravity", STYLE);
   G_ = gravity_constant(lmp, STYLE);
   masses_to_charges(lmp);
   {
