@@ -116,7 +116,6 @@ void ComputeSPHAstroGravityDirect::gather()
 
 void ComputeSPHAstroGravityDirect::evaluate()
 {
-  if (computed_step_ == update->ntimestep && result_) return;
   if (atom->nmax > nmax_) {
     memory->destroy(result_);
     nmax_ = atom->nmax;
@@ -133,7 +132,6 @@ void ComputeSPHAstroGravityDirect::evaluate()
   for (int i = 0; i < atom->nlocal; i++)
     local += 0.5 * (atom->rmass ? atom->rmass[i] : atom->mass[atom->type[i]]) * result_[i][3];
   MPI_Allreduce(&local, &energy_, 1, MPI_DOUBLE, MPI_SUM, world);
-  computed_step_ = update->ntimestep;
 }
 
 // open boundaries: phi_i = G sum_{j != i} m_j phi_ij, F_i = -G m_i sum_j m_j dphi_ij/dr r_ij/r

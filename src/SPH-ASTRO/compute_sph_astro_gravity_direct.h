@@ -31,7 +31,6 @@ class ComputeSPHAstroGravityDirect : public Compute {
   int nmax_ = 0;
   double **result_ = nullptr;    // fx fy fz phi of the owned atoms
   double energy_ = 0.0;          // 1/2 sum_i m_i phi_i over all atoms
-  bigint computed_step_ = -1;
 
   // all atoms of all ranks
   std::vector<double> x_, m_, h_;

@@ -54,6 +54,7 @@ PairSPHAstroGravity::PairSPHAstroGravity(LAMMPS *lmp) : Pair(lmp)
   comm_forward = 1;    // softening length h of the ghosts
   // the long-range solvers check these flags; a non-gravity solver is refused in extract()
   ewaldflag = pppmflag = msmflag = 1;
+  ncoultablebits = 0;    // no tabulation (the kspace accuracy estimates include table errors)
 }
 
 PairSPHAstroGravity::~PairSPHAstroGravity()
