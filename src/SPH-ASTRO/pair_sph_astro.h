@@ -51,6 +51,7 @@ class PairSPHAstro : public Pair {
   // physics settings read by the package's fixes and computes
   const SPHAstro::EOS &eos() const { return eos_; }
   double kernel_radius() const { return kernel_radius_; }    // support = kernel_radius * h
+  SPHAstro::KernelType kernel_type() const { return kernel_; }
   double alpha() const { return visc_alpha_; }
   double beta() const { return visc_beta_; }
   bool has_viscosity() const { return visc_on_; }
@@ -71,7 +72,6 @@ class PairSPHAstro : public Pair {
   static constexpr double COLLECTION_GROWTH = 1.2;
   // physical heat conduction (pair_sph_astro_conduction.cpp): kappa = k / c_v, 0 when off
   double conduction_kappa() const { return cond_kappa_; }
-  SPHAstro::KernelType kernel_type() const { return kernel_; }
 
  protected:
   SPHAstro::KernelType kernel_ = SPHAstro::KernelType::CUBIC;

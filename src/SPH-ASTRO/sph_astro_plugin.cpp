@@ -7,10 +7,14 @@
 
 #include "compute_sph_astro_atom.h"
 #include "compute_sph_astro_global.h"
+#include "compute_sph_astro_gravity_direct.h"
 #include "fix_sph_astro.h"
 #include "fix_sph_astro_h.h"
 #include "fix_sph_astro_switch.h"
+#include "msm_sph_astro_gravity.h"
 #include "pair_sph_astro.h"
+#include "pair_sph_astro_gravity.h"
+#include "pppm_sph_astro_gravity.h"
 #include "sph_astro_run_command.h"
 #include "sph_astro_state_command.h"
 
@@ -19,6 +23,26 @@ using namespace LAMMPS_NS;
 static Pair *pair_sph_astro_creator(LAMMPS *lmp)
 {
   return new PairSPHAstro(lmp);
+}
+
+static Pair *pair_sph_astro_gravity_creator(LAMMPS *lmp)
+{
+  return new PairSPHAstroGravity(lmp);
+}
+
+static KSpace *pppm_sph_astro_gravity_creator(LAMMPS *lmp)
+{
+  return new PPPMSPHAstroGravity(lmp);
+}
+
+static KSpace *msm_sph_astro_gravity_creator(LAMMPS *lmp)
+{
+  return new MSMSPHAstroGravity(lmp);
+}
+
+static Compute *compute_sph_astro_gravity_direct_creator(LAMMPS *lmp, int narg, char **arg)
+{
+  return new ComputeSPHAstroGravityDirect(lmp, narg, arg);
 }
 
 static Fix *fix_sph_astro_creator(LAMMPS *lmp, int narg, char **arg)
@@ -71,6 +95,22 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.creator.v1 = (lammpsplugin_factory1 *) &pair_sph_astro_creator;
   (*register_plugin)(&plugin, lmp);
 
+  plugin.name = "sph/astro/gravity";
+  plugin.info = "SPH-ASTRO kernel-softened self-gravity (short-range part with a kspace)";
+  plugin.creator.v1 = (lammpsplugin_factory1 *) &pair_sph_astro_gravity_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.style = "kspace";
+  plugin.name = "pppm/sph/astro/gravity";
+  plugin.info = "SPH-ASTRO long-range self-gravity, PPPM (periodic)";
+  plugin.creator.v1 = (lammpsplugin_factory1 *) &pppm_sph_astro_gravity_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.name = "msm/sph/astro/gravity";
+  plugin.info = "SPH-ASTRO long-range self-gravity, MSM (open boundaries)";
+  plugin.creator.v1 = (lammpsplugin_factory1 *) &msm_sph_astro_gravity_creator;
+  (*register_plugin)(&plugin, lmp);
+
   plugin.style = "fix";
   plugin.name = "sph/astro";
   plugin.info = "SPH-ASTRO kick-drift-kick integrator with adaptive timestep";
@@ -96,6 +136,11 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "sph/astro/global";
   plugin.info = "SPH-ASTRO mass, momentum, angular momentum, energies, energy error";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &compute_sph_astro_global_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.name = "sph/astro/gravity/direct";
+  plugin.info = "SPH-ASTRO reference self-gravity: direct (open) or Ewald (periodic) sums";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &compute_sph_astro_gravity_direct_creator;
   (*register_plugin)(&plugin, lmp);
 
   plugin.style = "command";

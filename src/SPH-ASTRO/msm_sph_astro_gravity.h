@@ -1,0 +1,31 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   SPH-ASTRO: long-range self-gravity from LAMMPS' MSM
+------------------------------------------------------------------------- */
+
+#ifdef KSPACE_CLASS
+// clang-format off
+KSpaceStyle(msm/sph/astro/gravity,MSMSPHAstroGravity);
+// clang-format on
+#else
+
+#ifndef LMP_MSM_SPH_ASTRO_GRAVITY_H
+#define LMP_MSM_SPH_ASTRO_GRAVITY_H
+
+#include "msm.h"
+
+namespace LAMMPS_NS {
+
+class MSMSPHAstroGravity : public MSM {
+ public:
+  MSMSPHAstroGravity(class LAMMPS *);
+  void init() override;
+  void compute(int, int) override;
+
+ protected:
+  double G_ = 0.0;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

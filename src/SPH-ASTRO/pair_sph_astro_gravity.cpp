@@ -1,0 +1,502 @@
+/* ----------------------------------------------------------------------
+   SPH-ASTRO: kernel-softened self-gravity, short-range part
+------------------------------------------------------------------------- */
+
+// Pair style sph/astro/gravity: Newtonian gravity between all atoms, softened with the SPH
+// kernel (Price & Monaghan 2007, MNRAS 374, 1347, sec. 2; sph_astro_gravity_kernel.h):
+//
+//   E = G sum_{i<j} m_i m_j phi_ij,   phi_ij = [phi(r_ij, h_i) + phi(r_ij, h_j)] / 2
+//   F_i = -G sum_j m_i m_j dphi_ij/dr  r_ij/|r_ij|,   r_ij = x_i - x_j
+//
+// (the mean of the two softening lengths: Price & Monaghan 2007, symmetric force of their
+// sec. 2.2 without the grad-h "zeta" correction terms, so energy is conserved exactly only for
+// fixed h). Without kspace this is the whole interaction within the cutoff (direct summation:
+// the cutoff must cover the system). With a gravity kspace style the pair computes the
+// short-range remainder that the kspace does not supply (seed 004 eq. 79, split as in LAMMPS'
+// coul/long and coul/msm):
+//   PPPM (Ewald split, Hockney & Eastwood; LAMMPS pair coul/long):
+//     phi_short = phi_ij + erf(g r)/r             (-> -erfc(g r)/r beyond the softening)
+//   MSM (Hardy 2006; Hardy et al. 2009, Parallel Computing 35, 164, eq. 4; pair coul/msm):
+//     phi_short = phi_ij + gamma(r/a)/a            (-> -(1 - r/a gamma(r/a))/r beyond it)
+// where the kspace supplies -G m_i m_j erf(g r)/r or -G m_i m_j gamma(r/a)/a for every pair.
+
+#include "pair_sph_astro_gravity.h"
+
+#include "pair_sph_astro.h"
+#include "sph_astro_gravity_kernel.h"
+#include "sph_astro_gravity_kspace.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "kspace.h"
+#include "math_const.h"
+#include "memory.h"
+#include "neigh_list.h"
+#include "neighbor.h"
+#include "update.h"
+#include "utils.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace SPHAstro;
+using MathConst::MY_PIS;
+
+PairSPHAstroGravity::PairSPHAstroGravity(LAMMPS *lmp) : Pair(lmp)
+{
+  single_enable = 0;
+  restartinfo = 1;
+  one_coeff = 1;
+  comm_forward = 1;    // softening length h of the ghosts
+  // the long-range solvers check these flags; a non-gravity solver is refused in extract()
+  ewaldflag = pppmflag = msmflag = 1;
+  ncoultablebits = 0;    // no tabulation (the kspace accuracy estimates include table errors)
+}
+
+PairSPHAstroGravity::~PairSPHAstroGravity()
+{
+  if (copymode) return;
+  if (allocated) {
+    memory->destroy(setflag);
+    memory->destroy(cutsq);
+  }
+}
+
+void PairSPHAstroGravity::allocate()
+{
+  allocated = 1;
+  const int n = atom->ntypes + 1;
+  memory->create(setflag, n, n, "pair:setflag");
+  for (int i = 1; i < n; i++)
+    for (int j = i; j < n; j++) setflag[i][j] = 0;
+  memory->create(cutsq, n, n, "pair:cutsq");
+}
+
+/* ----------------------------------------------------------------------
+   pair_style sph/astro/gravity CUTOFF [G VALUE] [kernel NAME] [h VALUE]
+------------------------------------------------------------------------- */
+
+void PairSPHAstroGravity::settings(int narg, char **arg)
+{
+  if (narg < 1) utils::missing_cmd_args(FLERR, "pair_style sph/astro/gravity", error);
+  cut_global_ = utils::numeric(FLERR, arg[0], false, lmp);
+  if (!(cut_global_ > 0.0))
+    error->all(FLERR, "pair_style sph/astro/gravity: cutoff {} must be > 0", arg[0]);
+  G_given_ = kernel_given_ = false;
+  hfixed_ = 0.0;
+  kernel_ = KernelType::CUBIC;
+  int iarg = 1;
+  while (iarg < narg) {
+    const std::string key = arg[iarg];
+    if (iarg + 2 > narg)
+      utils::missing_cmd_args(FLERR, "pair_style sph/astro/gravity " + key, error);
+    if (key == "G") {
+      G_ = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(G_ > 0.0))
+        error->all(FLERR, "pair_style sph/astro/gravity: G = {} must be > 0", arg[iarg + 1]);
+      G_given_ = true;
+    } else if (key == "kernel") {
+      if (!kernel_from_name(arg[iarg + 1], kernel_) || kernel_ == KernelType::GAUSSIAN)
+        error->all(FLERR,
+                   "pair_style sph/astro/gravity: unknown kernel '{}'; allowed: m4 (cubic), m6 "
+                   "(quintic), wendland/c2, wendland/c4",
+                   arg[iarg + 1]);
+      kernel_given_ = true;
+    } else if (key == "h") {
+      hfixed_ = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(hfixed_ > 0.0))
+        error->all(FLERR,
+                   "pair_style sph/astro/gravity: softening length h = {} must be > 0 (point "
+                   "masses need a softening length)",
+                   arg[iarg + 1]);
+    } else
+      error->all(FLERR, "pair_style sph/astro/gravity: unknown keyword '{}'; allowed: G, kernel, h",
+                 key);
+    iarg += 2;
+  }
+  resolve_gravity_constant();
+  // q holds the masses for the kspace solvers; with it in place a non-gravity kspace style
+  // reaches extract("cut_coul") below and gets a clear error
+  ensure_mass_charge(lmp, "pair_style sph/astro/gravity");
+}
+
+// default G by unit system (CODATA 2018: 6.67430e-11 m^3 kg^-1 s^-2)
+void PairSPHAstroGravity::resolve_gravity_constant()
+{
+  if (G_given_) return;
+  const std::string units = update->unit_style;
+  if (units == "lj")
+    G_ = 1.0;
+  else if (units == "si")
+    G_ = 6.67430e-11;
+  else if (units == "cgs")
+    G_ = 6.67430e-8;
+  else
+    error->all(FLERR,
+               "pair_style sph/astro/gravity: no default G for units {}; give it explicitly "
+               "(pair_style sph/astro/gravity CUTOFF G VALUE); defaults exist for lj (1), si "
+               "(6.6743e-11) and cgs (6.6743e-8)",
+               units);
+}
+
+void PairSPHAstroGravity::coeff(int narg, char **arg)
+{
+  if (narg != 2)
+    error->all(FLERR,
+               "pair_coeff for pair_style sph/astro/gravity takes only two type ranges (got {} "
+               "arguments)",
+               narg);
+  if (!allocated) allocate();
+  int ilo, ihi, jlo, jhi;
+  utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
+  utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
+  int count = 0;
+  for (int i = ilo; i <= ihi; i++)
+    for (int j = MAX(jlo, i); j <= jhi; j++) {
+      setflag[i][j] = 1;
+      count++;
+    }
+  if (count == 0)
+    error->all(FLERR, "pair_coeff sph/astro/gravity: type ranges {} {} select no pair", arg[0],
+               arg[1]);
+}
+
+double *PairSPHAstroGravity::state_h() const
+{
+  return have_state_ ? atom->dvector[state_.h] : nullptr;
+}
+
+double PairSPHAstroGravity::softening_length(int i) const
+{
+  const double *h = state_h();
+  return (h && h[i] > 0.0) ? h[i] : hfixed_;
+}
+
+void PairSPHAstroGravity::init_style()
+{
+  if (domain->dimension != 3)
+    error->all(FLERR,
+               "pair_style sph/astro/gravity: dimension {} not supported (3d Newtonian gravity)",
+               domain->dimension);
+  if (domain->triclinic)
+    error->all(FLERR, "pair_style sph/astro/gravity: triclinic boxes are not supported");
+  resolve_gravity_constant();
+
+  // the kernel of pair sph/astro, if present
+  auto *sph = dynamic_cast<PairSPHAstro *>(force->pair_match("^sph/astro$", 0, 0));
+  if (sph) {
+    if (kernel_given_ && sph->kernel_type() != kernel_)
+      error->all(FLERR,
+                 "pair_style sph/astro/gravity: kernel {} differs from the kernel {} of pair "
+                 "sph/astro; drop the keyword to use the same",
+                 kernel_name(kernel_), kernel_name(sph->kernel_type()));
+    kernel_ = sph->kernel_type();
+  }
+  // the softened potential has closed forms for the polynomial kernels only
+  if (kernel_ == KernelType::GAUSSIAN)
+    error->all(FLERR,
+               "pair_style sph/astro/gravity: no softened potential for kernel gaussian; "
+               "allowed: m4, m6, wendland/c2, wendland/c4");
+  have_state_ = find_state(lmp, state_);
+
+  // every atom needs a mass and a softening length
+  const double R = SPHAstro::kernel_radius(kernel_);
+  double hmax = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) {
+    const double m = atom->rmass ? atom->rmass[i] : atom->mass[atom->type[i]];
+    if (!(m > 0.0) || !std::isfinite(m))
+      error->one(FLERR, "pair_style sph/astro/gravity: atom {} has mass {}; masses must be > 0",
+                 atom->tag[i], m);
+    const double h = softening_length(i);
+    if (!(h > 0.0) || !std::isfinite(h))
+      error->one(FLERR,
+                 "pair_style sph/astro/gravity: atom {} has no softening length (d_h = {}); "
+                 "set d_h or give a fixed one: pair_style sph/astro/gravity CUTOFF h VALUE",
+                 atom->tag[i], have_state_ ? state_h()[i] : 0.0);
+    hmax = MAX(hmax, h);
+  }
+  double hmax_all;
+  MPI_Allreduce(&hmax, &hmax_all, 1, MPI_DOUBLE, MPI_MAX, world);
+
+  // which long-range solver supplies the rest
+  split_ = Split::NONE;
+  if (force->kspace) {
+    const std::string style = force->kspace_style;
+    if (style == "pppm/sph/astro/gravity") {
+      split_ = Split::EWALD;
+      g_ewald_ = force->kspace->g_ewald;
+    } else if (style == "msm/sph/astro/gravity")
+      split_ = Split::MSM;
+    else
+      error->all(FLERR,
+                 "pair_style sph/astro/gravity: kspace_style {} is not a gravity solver; use "
+                 "pppm/sph/astro/gravity (periodic) or msm/sph/astro/gravity (open boundaries)",
+                 style);
+    if (R * hmax_all > cut_global_)
+      error->all(FLERR,
+                 "pair_style sph/astro/gravity: cutoff {} is shorter than the softening support "
+                 "{} x h = {} of the largest h; the short-range part must cover it",
+                 cut_global_, R, R * hmax_all);
+  } else {
+    if (domain->nonperiodic != 2 && (domain->xperiodic || domain->yperiodic || domain->zperiodic))
+      error->all(FLERR,
+                 "pair_style sph/astro/gravity without kspace needs non-periodic boundaries "
+                 "(direct summation); for periodic boxes add kspace_style pppm/sph/astro/gravity");
+    const double diag = std::sqrt(domain->xprd * domain->xprd + domain->yprd * domain->yprd +
+                                  domain->zprd * domain->zprd);
+    if (cut_global_ < diag && comm->me == 0)
+      error->warning(FLERR,
+                     "pair_style sph/astro/gravity: cutoff {} is shorter than the box diagonal "
+                     "{} and there is no kspace: gravity between atoms farther apart is left "
+                     "out",
+                     cut_global_, diag);
+  }
+  neighbor->add_request(this);
+}
+
+double PairSPHAstroGravity::init_one(int i, int j)
+{
+  if (setflag[i][j] == 0)
+    error->all(FLERR,
+               "pair_style sph/astro/gravity: pair_coeff for types {} {} is not set; gravity "
+               "acts between all atoms (pair_coeff * *)",
+               i, j);
+  return cut_global_;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairSPHAstroGravity::compute(int eflag, int vflag)
+{
+  ev_init(eflag, vflag);
+  // ghosts need this step's softening lengths (fix sph/astro/h may have changed them)
+  if (have_state_) comm->forward_comm(this);
+  const bool cubic = kernel_ == KernelType::CUBIC;
+  if (split_ == Split::NONE) {
+    if (cubic)
+      eval<true, 0>(eflag, vflag);
+    else
+      eval<false, 0>(eflag, vflag);
+  } else if (split_ == Split::EWALD) {
+    if (cubic)
+      eval<true, 1>(eflag, vflag);
+    else
+      eval<false, 1>(eflag, vflag);
+  } else {
+    if (cubic)
+      eval<true, 2>(eflag, vflag);
+    else
+      eval<false, 2>(eflag, vflag);
+  }
+  if (vflag_fdotr) virial_fdotr_compute();
+}
+
+template <bool CUBIC, int SPLIT> void PairSPHAstroGravity::eval(int eflag, int /*vflag*/)
+{
+  double **x = atom->x;
+  double **f = atom->f;
+  const int *type = atom->type;
+  const double *rmass = atom->rmass;
+  const double *mass = atom->mass;
+  const int nlocal = atom->nlocal;
+  const int newton_pair = force->newton_pair;
+  const double *hstate = state_h();
+  const double hfix = hfixed_;
+  const SoftenedKernel &soft = softened_kernel(kernel_);
+  const double R = soft.radius();
+  const double cutsq = cut_global_ * cut_global_;
+  const double G = G_;
+  const double g = g_ewald_;
+  const double a = cut_global_;    // MSM split radius
+  const KSpace *kspace = force->kspace;
+
+  auto kernel_eval = [&](double q, double &fp, double &ff) {
+    if (CUBIC)
+      SoftenedCubic::eval(q, fp, ff);
+    else
+      soft.eval(q, fp, ff);
+  };
+
+  const int inum = list->inum;
+  const int *ilist = list->ilist;
+  const int *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
+    const double mi = rmass ? rmass[i] : mass[type[i]];
+    const double hi = (hstate && hstate[i] > 0.0) ? hstate[i] : hfix;
+    if (SPLIT != 0 && R * hi > cut_global_)
+      error->one(FLERR,
+                 "pair_style sph/astro/gravity: atom {} has softening support {} x h = {} beyond "
+                 "the cutoff {} on step {}; the short-range part must cover it (larger cutoff)",
+                 atom->tag[i], R, R * hi, cut_global_, update->ntimestep);
+    const double hiinv = 1.0 / hi;
+    double fxi = 0.0, fyi = 0.0, fzi = 0.0;
+    const int *jlist = firstneigh[i];
+    const int jnum = numneigh[i];
+    for (int jj = 0; jj < jnum; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const double delx = xi - x[j][0], dely = yi - x[j][1], delz = zi - x[j][2];
+      const double rsq = delx * delx + dely * dely + delz * delz;
+      if (rsq >= cutsq) continue;
+      const double mj = rmass ? rmass[j] : mass[type[j]];
+      const double hj = (hstate && hstate[j] > 0.0) ? hstate[j] : hfix;
+      const double r = std::sqrt(rsq);
+
+      // softened - Newtonian: s = phi_ij + 1/r, ds = dphi_ij/dr - 1/r^2, zero beyond both
+      // supports (computed as the difference only inside, so no cancellation outside)
+      double s = 0.0, ds = 0.0;
+      const bool inside = r < R * MAX(hi, hj);
+      if (inside) {
+        double pi, fi;
+        kernel_eval(r * hiinv, pi, fi);
+        double phi = pi * hiinv, dphi = fi * hiinv * hiinv;
+        if (hj != hi) {
+          const double hjinv = 1.0 / hj;
+          double pj, fj;
+          kernel_eval(r * hjinv, pj, fj);
+          phi = 0.5 * (phi + pj * hjinv);
+          dphi = 0.5 * (dphi + fj * hjinv * hjinv);
+        }
+        if (r == 0.0) {    // coincident atoms: finite potential, no force
+          double e0 = phi;
+          if (SPLIT == 1) e0 += 2.0 * g / MY_PIS;
+          if (SPLIT == 2) e0 += kspace->gamma(0.0) / a;
+          if (eflag) ev_tally(i, j, nlocal, newton_pair, G * mi * mj * e0, 0.0, 0.0, 0, 0, 0);
+          continue;
+        }
+        s = phi + 1.0 / r;
+        ds = dphi - 1.0 / rsq;
+      }
+
+      // potential e (per G m_i m_j) and de/dr of the part this pair style supplies
+      double e, de;
+      if (SPLIT == 0) {
+        e = s - 1.0 / r;
+        de = ds + 1.0 / rsq;
+      } else if (SPLIT == 1) {
+        // Newtonian minus the long-range erf(g r)/r of the kspace: -erfc(g r)/r
+        const double erfc_r = std::erfc(g * r) / r;
+        e = s - erfc_r;
+        de = ds + erfc_r / r + 2.0 * g / MY_PIS * std::exp(-g * g * rsq) / r;
+      } else {
+        // Newtonian minus the long-range gamma(r/a)/a of MSM: -(1 - rho gamma(rho))/r
+        const double rho = r / a;
+        e = s - (1.0 - rho * kspace->gamma(rho)) / r;
+        de = ds + (1.0 + rho * rho * kspace->dgamma(rho)) / rsq;
+      }
+      // F_i = -dU/dr r_ij/r with U = G m_i m_j e
+      const double fpair = -G * mi * mj * de / r;
+      fxi += delx * fpair;
+      fyi += dely * fpair;
+      fzi += delz * fpair;
+      if (newton_pair || j < nlocal) {
+        f[j][0] -= delx * fpair;
+        f[j][1] -= dely * fpair;
+        f[j][2] -= delz * fpair;
+      }
+      if (evflag)
+        ev_tally(i, j, nlocal, newton_pair, eflag ? G * mi * mj * e : 0.0, 0.0, fpair, delx, dely,
+                 delz);
+    }
+    f[i][0] += fxi;
+    f[i][1] += fyi;
+    f[i][2] += fzi;
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+int PairSPHAstroGravity::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/,
+                                           int * /*pbc*/)
+{
+  const double *h = state_h();
+  for (int k = 0; k < n; k++) buf[k] = h[list[k]];
+  return n;
+}
+
+void PairSPHAstroGravity::unpack_forward_comm(int n, int first, double *buf)
+{
+  double *h = state_h();
+  for (int k = 0; k < n; k++) h[first + k] = buf[k];
+}
+
+/* ----------------------------------------------------------------------
+   cut_coul: the real-space cutoff for the gravity kspace solvers (refused to others);
+   gravity_G: the gravitational constant they use as -G in place of qqrd2e
+------------------------------------------------------------------------- */
+
+void *PairSPHAstroGravity::extract(const char *str, int &dim)
+{
+  dim = 0;
+  if (strcmp(str, "gravity_G") == 0) {
+    resolve_gravity_constant();
+    return (void *) &G_;
+  }
+  if (strcmp(str, "cut_coul") == 0) {
+    const std::string kstyle = force->kspace ? force->kspace_style : "";
+    if (force->kspace && kstyle != "pppm/sph/astro/gravity" && kstyle != "msm/sph/astro/gravity")
+      error->all(FLERR,
+                 "pair_style sph/astro/gravity: kspace_style {} is not a gravity solver; use "
+                 "pppm/sph/astro/gravity (periodic) or msm/sph/astro/gravity (open boundaries)",
+                 force->kspace_style);
+    return (void *) &cut_global_;
+  }
+  return nullptr;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairSPHAstroGravity::write_restart(FILE *fp)
+{
+  write_restart_settings(fp);
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) fwrite(&setflag[i][j], sizeof(int), 1, fp);
+}
+
+void PairSPHAstroGravity::read_restart(FILE *fp)
+{
+  read_restart_settings(fp);
+  allocate();
+  const int me = comm->me;
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      if (me == 0) utils::sfread(FLERR, &setflag[i][j], sizeof(int), 1, fp, nullptr, error);
+      MPI_Bcast(&setflag[i][j], 1, MPI_INT, 0, world);
+    }
+}
+
+void PairSPHAstroGravity::write_restart_settings(FILE *fp)
+{
+  const int kernel = static_cast<int>(kernel_);
+  const int flags[2] = {G_given_ ? 1 : 0, kernel_given_ ? 1 : 0};
+  fwrite(&cut_global_, sizeof(double), 1, fp);
+  fwrite(&G_, sizeof(double), 1, fp);
+  fwrite(&hfixed_, sizeof(double), 1, fp);
+  fwrite(&kernel, sizeof(int), 1, fp);
+  fwrite(flags, sizeof(int), 2, fp);
+}
+
+void PairSPHAstroGravity::read_restart_settings(FILE *fp)
+{
+  double d[3];
+  int ints[3];
+  if (comm->me == 0) {
+    utils::sfread(FLERR, d, sizeof(double), 3, fp, nullptr, error);
+    utils::sfread(FLERR, ints, sizeof(int), 3, fp, nullptr, error);
+  }
+  MPI_Bcast(d, 3, MPI_DOUBLE, 0, world);
+  MPI_Bcast(ints, 3, MPI_INT, 0, world);
+  cut_global_ = d[0];
+  G_ = d[1];
+  hfixed_ = d[2];
+  kernel_ = static_cast<KernelType>(ints[0]);
+  G_given_ = ints[1] != 0;
+  kernel_given_ = ints[2] != 0;
+}

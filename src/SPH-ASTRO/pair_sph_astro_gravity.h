@@ -1,0 +1,71 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   SPH-ASTRO: kernel-softened self-gravity, short-range part
+------------------------------------------------------------------------- */
+
+#ifdef PAIR_CLASS
+// clang-format off
+PairStyle(sph/astro/gravity,PairSPHAstroGravity);
+// clang-format on
+#else
+
+#ifndef LMP_PAIR_SPH_ASTRO_GRAVITY_H
+#define LMP_PAIR_SPH_ASTRO_GRAVITY_H
+
+#include "pair.h"
+#include "sph_astro_kernel.h"
+#include "sph_astro_state.h"
+
+namespace LAMMPS_NS {
+
+class PairSPHAstroGravity : public Pair {
+ public:
+  PairSPHAstroGravity(class LAMMPS *);
+  ~PairSPHAstroGravity() override;
+
+  void compute(int, int) override;
+  void settings(int, char **) override;
+  void coeff(int, char **) override;
+  void init_style() override;
+  double init_one(int, int) override;
+  void write_restart(FILE *) override;
+  void read_restart(FILE *) override;
+  void write_restart_settings(FILE *) override;
+  void read_restart_settings(FILE *) override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
+  void *extract(const char *, int &) override;
+
+  // for compute sph/astro/gravity/direct (valid after init_style)
+  double gravity_constant() const { return G_; }
+  SPHAstro::KernelType kernel() const { return kernel_; }
+  // softening length of local or ghost atom i: d_h of the SPH state if > 0, else the fixed h
+  double softening_length(int i) const;
+  double cutoff() const { return cut_global_; }
+
+  // long-range split of the active gravity kspace: none (direct summation within the
+  // cutoff), Ewald/PPPM (erfc split) or MSM (gamma split)
+  enum class Split { NONE = 0, EWALD = 1, MSM = 2 };
+
+ protected:
+  double cut_global_ = 0.0;
+  double G_ = 0.0;
+  bool G_given_ = false;
+  SPHAstro::KernelType kernel_ = SPHAstro::KernelType::CUBIC;
+  bool kernel_given_ = false;
+  double hfixed_ = 0.0;    // softening length of atoms without SPH state (0: none)
+
+  bool have_state_ = false;
+  SPHAstro::StateIndex state_;
+  Split split_ = Split::NONE;
+  double g_ewald_ = 0.0;
+
+  void allocate();
+  void resolve_gravity_constant();
+  double *state_h() const;
+  template <bool CUBIC, int SPLIT> void eval(int eflag, int vflag);
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

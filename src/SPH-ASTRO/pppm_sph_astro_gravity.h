@@ -1,0 +1,31 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   SPH-ASTRO: long-range self-gravity from LAMMPS' PPPM
+------------------------------------------------------------------------- */
+
+#ifdef KSPACE_CLASS
+// clang-format off
+KSpaceStyle(pppm/sph/astro/gravity,PPPMSPHAstroGravity);
+// clang-format on
+#else
+
+#ifndef LMP_PPPM_SPH_ASTRO_GRAVITY_H
+#define LMP_PPPM_SPH_ASTRO_GRAVITY_H
+
+#include "pppm.h"
+
+namespace LAMMPS_NS {
+
+class PPPMSPHAstroGravity : public PPPM {
+ public:
+  PPPMSPHAstroGravity(class LAMMPS *);
+  void init() override;
+  void compute(int, int) override;
+
+ protected:
+  double G_ = 0.0;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

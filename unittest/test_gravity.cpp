@@ -1,0 +1,394 @@
+// LAMMPS-driven tests of self-gravity: pair sph/astro/gravity, kspace pppm/sph/astro/gravity and
+// msm/sph/astro/gravity against compute sph/astro/gravity/direct (direct summation for open
+// boundaries, Ewald summation for periodic boxes), momentum conservation, the hybrid/overlay
+// combination with pair sph/astro, restart continuity and the errors for bad input.
+
+#include "lammps_fixture.h"
+
+#include "compute.h"
+#include "force.h"
+#include "kspace.h"
+#include "pair.h"
+#include "variable.h"
+
+#include <cmath>
+#include <cstdio>
+
+using namespace sph_astro_test;
+using LAMMPS_NS::LAMMPS;
+
+namespace {
+// N random atoms of mass 1 in a ball of radius 5 (open, boundary m) or a periodic box of side
+// 10; per-atom softening lengths d_h in [0.3, 0.6] from the SPH state; pair cutoff CUT
+void cloud(const std::unique_ptr<LAMMPS> &lmp, bool periodic, int n, const std::string &pair,
+           const std::string &kspace, const std::string &kernel = "m4")
+{
+  commands(lmp,
+           {"units lj", "atom_style atomic", "atom_modify map array sort 0 0.0",
+            std::string("boundary ") + (periodic ? "p p p" : "m m m")});
+  if (periodic)
+    commands(lmp,
+             {"region box block 0 10 0 10 0 10", "create_box 1 box",
+              "create_atoms 1 random " + std::to_string(n) + " 4711 NULL"});
+  else
+    commands(lmp,
+             {"region box block -6 6 -6 6 -6 6", "create_box 1 box",
+              "region ball sphere 0 0 0 5 units box",
+              "create_atoms 1 random " + std::to_string(n) + " 4711 ball"});
+  commands(lmp,
+           {"mass 1 1.0", "sph/astro/state", "variable hrand atom 0.3+0.3*random(0,1,99)",
+            "set group all d_h v_hrand", "pair_style " + pair + " kernel " + kernel,
+            "pair_coeff * *"});
+  if (!kspace.empty()) commands(lmp, {"kspace_style " + kspace});
+  commands(lmp,
+           {"compute ref all sph/astro/gravity/direct", "thermo_style custom step pe c_ref",
+            "thermo_modify norm no"});
+}
+
+// relative RMS difference of the forces from the reference compute's
+double force_error(const std::unique_ptr<LAMMPS> &lmp)
+{
+  auto *ref = lmp->modify->get_compute_by_id("ref");
+  ref->compute_peratom();
+  double d2 = 0.0, f2 = 0.0;
+  for (int i = 0; i < lmp->atom->nlocal; i++)
+    for (int d = 0; d < 3; d++) {
+      const double diff = lmp->atom->f[i][d] - ref->array_atom[i][d];
+      d2 += diff * diff;
+      f2 += ref->array_atom[i][d] * ref->array_atom[i][d];
+    }
+  return std::sqrt(d2 / f2);
+}
+
+double potential_energy(const std::unique_ptr<LAMMPS> &lmp)
+{
+  double e = lmp->force->pair->eng_vdwl;
+  if (lmp->force->kspace) e += lmp->force->kspace->energy;
+  return e;
+}
+
+double reference_energy(const std::unique_ptr<LAMMPS> &lmp)
+{
+  return lmp->modify->get_compute_by_id("ref")->compute_scalar();
+}
+
+const char *all_kernels[] = {"m4", "m6", "wendland/c2", "wendland/c4"};
+}    // namespace
+
+// direct summation (no kspace, cutoff beyond the system) equals the reference for every kernel
+class GravityDirect : public ::testing::TestWithParam<const char *> {};
+
+TEST_P(GravityDirect, PairEqualsDirectSum)
+{
+  auto lmp = open_lammps();
+  cloud(lmp, false, 300, "sph/astro/gravity 20", "", GetParam());
+  commands(lmp, {"run 0"});
+  const double err = force_error(lmp);
+  printf("%s: pair vs direct sum: relative RMS force difference %.2e\n", GetParam(), err);
+  EXPECT_LT(err, 1e-12);
+  EXPECT_NEAR(potential_energy(lmp), reference_energy(lmp),
+              1e-12 * std::fabs(reference_energy(lmp)));
+  // the softening matters here (h up to 0.6, mean spacing ~1.2): it differs from Newtonian
+  ASSERT_LT(reference_energy(lmp), 0.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllKernels, GravityDirect, ::testing::ValuesIn(all_kernels));
+
+TEST(GravityDirect, SofteningChangesTheForces)
+{
+  // the same cloud with h 10x smaller: the forces must differ (the test can fail)
+  auto lmp = open_lammps();
+  cloud(lmp, false, 300, "sph/astro/gravity 20", "");
+  commands(lmp, {"run 0"});
+  std::vector<double> f0;
+  for (int i = 0; i < lmp->atom->nlocal; i++) f0.push_back(lmp->atom->f[i][0]);
+  commands(lmp, {"variable hsmall atom 0.1*v_hrand", "set group all d_h v_hsmall", "run 0"});
+  double diff = 0.0, norm = 0.0;
+  for (int i = 0; i < lmp->atom->nlocal; i++) {
+    diff += std::fabs(lmp->atom->f[i][0] - f0[i]);
+    norm += std::fabs(f0[i]);
+  }
+  EXPECT_GT(diff / norm, 1e-3);
+  EXPECT_LT(force_error(lmp), 1e-12);
+}
+
+// long range + short range against the reference within the set accuracy
+struct KSpaceCase {
+  const char *name;
+  bool periodic;
+  const char *kspace;
+  double accuracy, bound;    // bound on the relative RMS force error
+};
+
+class GravityKSpace : public ::testing::TestWithParam<KSpaceCase> {};
+
+TEST_P(GravityKSpace, MatchesReferenceWithinAccuracy)
+{
+  const auto c = GetParam();
+  auto lmp = open_lammps();
+  cloud(lmp, c.periodic, 400, "sph/astro/gravity 3.0",
+        std::string(c.kspace) + " " + num(c.accuracy));
+  commands(lmp, {"run 0"});
+  const double err = force_error(lmp);
+  const double e = potential_energy(lmp), eref = reference_energy(lmp);
+  printf("%s accuracy %.0e: relative RMS force error %.3e, energy %.10g vs %.10g\n", c.name,
+         c.accuracy, err, e, eref);
+  EXPECT_LT(err, c.bound);
+  EXPECT_GT(err, 1e-3 * c.accuracy);    // a long-range solver, not the exact sum
+  EXPECT_NEAR(e, eref, 10 * c.bound * std::fabs(eref));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Solvers, GravityKSpace,
+    ::testing::Values(KSpaceCase{"msm_open", false, "msm/sph/astro/gravity", 1e-4, 3e-4},
+                      KSpaceCase{"msm_open", false, "msm/sph/astro/gravity", 1e-6, 3e-6},
+                      KSpaceCase{"pppm_periodic", true, "pppm/sph/astro/gravity", 1e-4, 3e-4},
+                      KSpaceCase{"pppm_periodic", true, "pppm/sph/astro/gravity", 1e-6, 3e-6}),
+    [](const ::testing::TestParamInfo<KSpaceCase> &info) {
+      return std::string(info.param.name) + "_" + std::to_string(info.index);
+    });
+
+TEST(GravityPair, MomentumIsConserved)
+{
+  // pairwise antisymmetric forces: total force zero, momentum constant over a run
+  auto lmp = open_lammps();
+  cloud(lmp, false, 300, "sph/astro/gravity 20", "");
+  commands(lmp,
+           {"fix nve all nve", "timestep 0.01", "velocity all create 0.1 12345 mom yes rot yes",
+            "run 0"});
+  double fsum[3] = {0, 0, 0}, fabs_sum = 0;
+  for (int i = 0; i < lmp->atom->nlocal; i++)
+    for (int d = 0; d < 3; d++) {
+      fsum[d] += lmp->atom->f[i][d];
+      fabs_sum += std::fabs(lmp->atom->f[i][d]);
+    }
+  for (double fd : fsum) EXPECT_LT(std::fabs(fd), 1e-13 * fabs_sum);
+  commands(lmp, {"run 200"});
+  double p[3] = {0, 0, 0}, pabs = 0;
+  for (int i = 0; i < lmp->atom->nlocal; i++)
+    for (int d = 0; d < 3; d++) {
+      p[d] += lmp->atom->v[i][d];
+      pabs += std::fabs(lmp->atom->v[i][d]);
+    }
+  ASSERT_GT(pabs, 0.0);
+  for (double pd : p) EXPECT_LT(std::fabs(pd), 1e-12 * pabs);
+}
+
+TEST(GravityPair, EnergyIsConservedWithFixedSoftening)
+{
+  // fixed h (no SPH state change): the softened potential is a true potential, so
+  // leapfrog conserves E = K + U to O(dt^2)
+  auto energy_drift = [](double dt) {
+    auto lmp = open_lammps();
+    cloud(lmp, false, 200, "sph/astro/gravity 20", "");
+    commands(lmp,
+             {"fix nve all nve", "timestep " + num(dt), "thermo_style custom step etotal",
+              "thermo_modify norm no", "run 0"});
+    const double e0 = lmp->force->pair->eng_vdwl;
+    const int n = static_cast<int>(std::lround(0.4 / dt));
+    commands(
+        lmp,
+        {"variable et equal etotal", "thermo " + std::to_string(n), "run " + std::to_string(n)});
+    const double e1 = lmp->input->variable->compute_equal("v_et");
+    return std::fabs((e1 - e0) / e0);
+  };
+  const double e1 = energy_drift(0.02), e2 = energy_drift(0.01);
+  printf("gravity energy error: dt 0.02 %.3e, dt 0.01 %.3e\n", e1, e2);
+  EXPECT_LT(e1, 1e-3);
+  EXPECT_NEAR(e1 / e2, 4.0, 1.5);
+}
+
+TEST(GravityPair, HybridOverlayWithSPH)
+{
+  // gas ball with SPH and self-gravity: fix sph/astro finds the SPH sub-style, the gravity
+  // sub-style takes the SPH kernel, and compute sph/astro/global's potential energy (value 10)
+  // is the gravitational energy of the reference
+  auto lmp = open_lammps();
+  const double h = 1.2 * std::cbrt(0.25);
+  commands(lmp,
+           {"units lj",
+            "atom_style atomic",
+            "atom_modify map array sort 0 0.0",
+            "boundary s s s",
+            "lattice fcc 4.0",
+            "region box block -4 4 -4 4 -4 4",
+            "create_box 1 box",
+            "region ball sphere 0 0 0 3 units box",
+            "create_atoms 1 region ball",
+            "mass 1 0.25",
+            "pair_style hybrid/overlay sph/astro kernel wendland/c4 eos ideal 1.6666667 "
+            "viscosity classic 1.0 2.0 sph/astro/gravity 30",
+            "pair_coeff * * sph/astro",
+            "pair_coeff * * sph/astro/gravity",
+            "fix gas all sph/astro courant 0.3",
+            "set group all d_h " + num(h),
+            "set group all d_u 0.05",
+            "neighbor " + num(0.3 * h) + " bin",
+            "compute sum all sph/astro/global",
+            "thermo_style custom step c_sum[10]",
+            "compute ref all sph/astro/gravity/direct",
+            "run 0"});
+  const auto sum = global_vector(lmp, "sum", 12);
+  const double eref = reference_energy(lmp);
+  ASSERT_LT(eref, 0.0);
+  EXPECT_NEAR(sum[9], eref, 1e-11 * std::fabs(eref));
+  // the gas falls inwards: gravity acts through the hybrid style during a run
+  commands(lmp, {"run 20"});
+  const auto after = global_vector(lmp, "sum", 12);
+  EXPECT_LT(after[9], sum[9]);
+  // a different kernel for the gravity sub-style is refused
+  commands(lmp,
+           {"pair_style hybrid/overlay sph/astro kernel wendland/c4 eos ideal 1.6 "
+            "sph/astro/gravity 30 kernel m4",
+            "pair_coeff * * sph/astro", "pair_coeff * * sph/astro/gravity"});
+  const auto err = error_of(lmp, "run 0");
+  EXPECT_NE(err.find("kernel m4 differs from the kernel wendland/c4"), std::string::npos) << err;
+}
+
+TEST(GravityPair, RestartContinuesBitForBit)
+{
+  const std::string restart = "test_gravity.restart";
+  std::map<int, double> x_ref, v_ref;
+  const std::vector<std::string> run_setup = {"fix nve all nve", "timestep 0.01",
+                                              "neigh_modify every 1 delay 0 check yes"};
+  {
+    auto lmp = open_lammps();
+    cloud(lmp, false, 200, "sph/astro/gravity 3.0", "msm/sph/astro/gravity 1e-5");
+    commands(lmp, {"velocity all create 0.1 777"});
+    commands(lmp, run_setup);
+    commands(lmp, {"run 20", "write_restart " + restart, "run 20"});
+    x_ref = per_atom(lmp, "x", 0);
+    v_ref = per_atom(lmp, "v", 1);
+  }
+  auto lmp = open_lammps();
+  commands(
+      lmp,
+      {"read_restart " + restart, "sph/astro/state", "kspace_style msm/sph/astro/gravity 1e-5"});
+  commands(lmp, run_setup);
+  commands(lmp, {"run 20"});
+  auto x = per_atom(lmp, "x", 0);
+  auto v = per_atom(lmp, "v", 1);
+  ASSERT_EQ(x.size(), x_ref.size());
+  for (const auto &[id, value] : x_ref) {
+    EXPECT_EQ(x[id], value) << "atom " << id;
+    EXPECT_EQ(v[id], v_ref[id]) << "atom " << id;
+  }
+  std::remove(restart.c_str());
+}
+
+// ----------------------------------------------------------------- bad input
+
+TEST(GravityErrors, MissingGInUnitsReal)
+{
+  auto lmp = open_lammps();
+  commands(lmp, {"units real", "region box block 0 1 0 1 0 1", "create_box 1 box"});
+  const auto err = error_of(lmp, "pair_style sph/astro/gravity 5.0");
+  EXPECT_NE(err.find("pair_style sph/astro/gravity: no default G for units real"),
+            std::string::npos)
+      << err;
+  EXPECT_EQ(error_of(lmp, "pair_style sph/astro/gravity 5.0 G 6.6743e-11"), "");
+}
+
+TEST(GravityErrors, BadValues)
+{
+  auto lmp = open_lammps();
+  commands(lmp, {"units lj", "region box block 0 1 0 1 0 1", "create_box 1 box"});
+  auto err = error_of(lmp, "pair_style sph/astro/gravity -1.0");
+  EXPECT_NE(err.find("cutoff -1.0 must be > 0"), std::string::npos) << err;
+  err = error_of(lmp, "pair_style sph/astro/gravity 5.0 G -2");
+  EXPECT_NE(err.find("G = -2 must be > 0"), std::string::npos) << err;
+  err = error_of(lmp, "pair_style sph/astro/gravity 5.0 kernel lucy");
+  EXPECT_NE(err.find("unknown kernel 'lucy'"), std::string::npos) << err;
+  err = error_of(lmp, "pair_style sph/astro/gravity 5.0 kernel gaussian");
+  EXPECT_NE(err.find("unknown kernel 'gaussian'"), std::string::npos) << err;
+  err = error_of(lmp, "pair_style sph/astro/gravity 5.0 h 0");
+  EXPECT_NE(err.find("softening length h = 0 must be > 0"), std::string::npos) << err;
+  err = error_of(lmp, "pair_style sph/astro/gravity 5.0 soften 1");
+  EXPECT_NE(err.find("unknown keyword 'soften'"), std::string::npos) << err;
+}
+
+TEST(GravityErrors, IncompatibleBoundaries)
+{
+  {
+    auto lmp = open_lammps();
+    cloud(lmp, false, 50, "sph/astro/gravity 3.0", "pppm/sph/astro/gravity 1e-4");
+    const auto err = error_of(lmp, "run 0");
+    EXPECT_NE(err.find("kspace_style pppm/sph/astro/gravity: boundary m m m is not periodic"),
+              std::string::npos)
+        << err;
+  }
+  {
+    auto lmp = open_lammps();
+    cloud(lmp, true, 50, "sph/astro/gravity 3.0", "msm/sph/astro/gravity 1e-4");
+    const auto err = error_of(lmp, "run 0");
+    EXPECT_NE(err.find("kspace_style msm/sph/astro/gravity: boundary p p p is periodic"),
+              std::string::npos)
+        << err;
+  }
+  {
+    auto lmp = open_lammps();
+    cloud(lmp, true, 50, "sph/astro/gravity 3.0", "");
+    const auto err = error_of(lmp, "run 0");
+    EXPECT_NE(err.find("without kspace needs non-periodic boundaries"), std::string::npos) << err;
+  }
+}
+
+TEST(GravityErrors, KSpaceWithoutGravityPair)
+{
+  auto lmp = open_lammps();
+  commands(lmp,
+           {"units lj", "atom_style atomic", "boundary p p p", "region box block 0 10 0 10 0 10",
+            "create_box 1 box", "create_atoms 1 random 50 4711 NULL", "mass 1 1.0",
+            "pair_style lj/cut 2.5", "pair_coeff * * 1 1",
+            "kspace_style pppm/sph/astro/gravity 1e-4"});
+  const auto err = error_of(lmp, "run 0");
+  EXPECT_NE(err.find("kspace_style pppm/sph/astro/gravity needs pair_style sph/astro/gravity"),
+            std::string::npos)
+      << err;
+}
+
+TEST(GravityErrors, NonGravityKSpace)
+{
+  for (const char *kspace : {"pppm 1e-4", "ewald 1e-4"}) {
+    auto lmp = open_lammps();
+    cloud(lmp, true, 50, "sph/astro/gravity 3.0", kspace);
+    const auto err = error_of(lmp, "run 0");
+    EXPECT_NE(err.find("pair_style sph/astro/gravity: kspace_style"), std::string::npos) << err;
+    EXPECT_NE(err.find("is not a gravity solver"), std::string::npos) << err;
+  }
+}
+
+TEST(GravityErrors, CutoffShorterThanSoftening)
+{
+  auto lmp = open_lammps();
+  // (PPPM: MSM may itself enlarge a short cutoff to fit its grid)
+  cloud(lmp, true, 50, "sph/astro/gravity 1.0", "pppm/sph/astro/gravity 1e-4");
+  const auto err = error_of(lmp, "run 0");
+  EXPECT_NE(err.find("pair_style sph/astro/gravity: cutoff 1 is shorter than the softening "
+                     "support"),
+            std::string::npos)
+      << err;
+}
+
+TEST(GravityErrors, AtomWithoutSofteningLength)
+{
+  auto lmp = open_lammps();
+  commands(lmp,
+           {"units lj", "atom_style atomic", "atom_modify map array", "boundary f f f",
+            "region box block 0 10 0 10 0 10", "create_box 1 box",
+            "create_atoms 1 random 20 4711 NULL", "mass 1 1.0", "pair_style sph/astro/gravity 30",
+            "pair_coeff * *"});
+  auto err = error_of(lmp, "run 0");
+  EXPECT_NE(err.find("has no softening length"), std::string::npos) << err;
+  commands(lmp, {"pair_style sph/astro/gravity 30 h 0.5", "pair_coeff * *"});
+  EXPECT_EQ(error_of(lmp, "run 0"), "");
+}
+
+int main(int argc, char **argv)
+{
+  MPI_Init(&argc, &argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  const int rc = RUN_ALL_TESTS();
+  MPI_Finalize();
+  return rc;
+}
