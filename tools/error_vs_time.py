@@ -132,6 +132,29 @@ def analyse_sedov(dump_path, run):
             "n_measured": err["n"]}
 
 
+def analyse_toystar(dump_path, run):
+    """Toy star (examples/toystar/in.toystar) against rho(r) of seed 001: L1(rho)/rho_c and the
+    |relative error| of the fitted radius R_fit after the damped relaxation (DUMP.relaxed), their
+    drift over the undamped continuation (DUMP), and from the log the largest kinetic energy
+    of the continuation over the thermal energy and its |relative energy error|."""
+    import importlib.util
+    from sphastro import toystar
+    path = os.path.join(ROOT, "examples", "toystar", "analyse.py")
+    spec = importlib.util.spec_from_file_location("toystar_analyse", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    M, R = float(run.vars.get("M", 2.0)), float(run.vars.get("R", 0.75))
+    k, n = float(run.vars.get("k", 0.1)), float(run.vars.get("npoly", 1.0))
+    e1 = toystar.toystar_errors(read_last_frame(dump_path + ".relaxed"), M, R, k, n)
+    e2 = toystar.toystar_errors(read_last_frame(dump_path), M, R, k, n)
+    log = module.parse_log(os.path.join(os.path.dirname(dump_path), "log.lammps"))
+    return {"l1": e1["l1_rel"], "rfit": abs(e1["err_r_fit"]), "rrms": abs(e1["err_r_rms"]),
+            "rhoc": abs(e1["rho_c_sph"] / e1["rho_c"] - 1.0),
+            "drift_l1": abs(e2["l1_rel"] - e1["l1_rel"]), "drift_r": abs(e2["r_fit"] - e1["r_fit"]) / R,
+            "ekin": log["ekin_free_max"] / log["eth_relaxed"], "energy": abs(log["energy"]),
+            "n_measured": e1["n"]}
+
+
 SCENES: Dict[str, Scene] = {
     "sod": Scene(
         input="examples/sod/in.sod", res_var="nx", out_var="out",
@@ -160,8 +183,16 @@ SCENES: Dict[str, Scene] = {
         notes="Sedov-Taylor, 3D, t = 0.1: N = 4 n^3; L1 over r < 1.2 R_s; Rs_err: |relative "
               "error| of the shock radius (binned density peak; half height of the jump)",
         physics="switch=no;switch=mm;switch=cd"),
-    # Later, e.g.:
-    # "noh": ..., "toystar": ...
+    "toystar": Scene(
+        input="examples/toystar/in.toystar", res_var="n", out_var="out",
+        default_res=(8, 12, 16), analyse=analyse_toystar,
+        errors=(("l1", "L1_rho/rho_c"), ("rfit", "R_fit_err"), ("rrms", "R_rms_err"),
+                ("rhoc", "rho_c_err"), ("drift_l1", "dL1_free"), ("drift_r", "dR_free"),
+                ("ekin", "Ekin/Eth_free"), ("energy", "dE_free")),
+        plot=("l1", "rfit"), fit="l1",
+        notes="toy star (seed 001), 3D, n = 1: N ~ 2.1 n^3; damped to t = 12, then undamped "
+              "to t = 18; L1 over all particles; R_fit: radius of the fitted rho^(1/n) = "
+              "A (R^2 - r^2); *_free: drift/largest values over the undamped continuation"),
 }
 
 
@@ -346,7 +377,8 @@ def plot(scene_name, scene, runs_by_variant, png_path, nproc):
 
     labels = {"rho": r"$L_1(\rho)$", "vx": r"$L_1(v_x)$", "p": r"$L_1(P)$", "u": r"$L_1(u)$",
               "vphi": r"$L_1(v_\phi)$", "vr": r"$L_1(v_r)$",
-              "rshock": r"$|R_{peak} - R_s| / R_s$"}
+              "rshock": r"$|R_{peak} - R_s| / R_s$", "l1": r"$L_1(\rho) / \rho_c$",
+              "rfit": r"$|R_{fit} - R| / R$"}
     fig = Figure(figsize=(4.2 * len(scene.plot), 4.2))
     axes = fig.subplots(1, len(scene.plot), squeeze=False)[0]
     markers = "osD^v<>px"

@@ -1,5 +1,7 @@
 """Python reference and analysis tools for SPH-ASTRO.
 
 Modules: :mod:`riemann` (exact Riemann solver), :mod:`dump` (LAMMPS text dump
-reader) and :mod:`sod` (shock-tube error norms and profile plots).
+reader), :mod:`sod` (shock-tube error norms and profile plots), :mod:`sedov`
+(Sedov-Taylor solution), :mod:`toystar` (toy-star lambda, profile and errors, seed 001)
+and :mod:`runs` (LAMMPS environment and log parsing for the scripts).
 """
