@@ -691,17 +691,22 @@ TEST(FixSPHAstro, ChangesBetweenRunsReachTheFirstForceEvaluation)
 
 TEST(FixSPHAstro, ThermoReportsTheStepThatReachesTend)
 {
-  auto lmp = open_lammps();
-  gas(lmp, "box", 3, PAIR, "sph/astro tend 0.3");
-  commands(lmp, {"thermo 1000", "run 100000"});
-  EXPECT_GT(lmp->update->ntimestep, 2);
-  // the compute was evaluated by thermo on the final step, with the energy
-  // tallied
-  const auto end = global_vector(lmp, "sum", 12);
-  ASSERT_EQ(end.size(), 12u);
-  auto *compute = lmp->modify->get_compute_by_id("sum");
-  ASSERT_NE(compute, nullptr);
-  EXPECT_EQ(compute->invoked_vector, lmp->update->ntimestep);
+  // also with a dump every step, whose output resets the computes' invoked flags
+  for (bool dump : {false, true}) {
+    auto lmp = open_lammps();
+    gas(lmp, "box", 3, PAIR, "sph/astro tend 0.3");
+    if (dump) commands(lmp, {"dump every all custom 1 test_every.dump id x"});
+    commands(lmp, {"thermo 1000", "run 100000"});
+    EXPECT_GT(lmp->update->ntimestep, 2);
+    // the compute was evaluated by thermo on the final step, with the energy
+    // tallied
+    const auto end = global_vector(lmp, "sum", 12);
+    ASSERT_EQ(end.size(), 12u);
+    auto *compute = lmp->modify->get_compute_by_id("sum");
+    ASSERT_NE(compute, nullptr);
+    EXPECT_EQ(compute->invoked_vector, lmp->update->ntimestep);
+  }
+  std::remove("test_every.dump");
 }
 
 TEST(FixSPHAstro, OnlyOneInstance)

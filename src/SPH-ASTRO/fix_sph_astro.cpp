@@ -365,7 +365,9 @@ void FixSPHAstro::schedule_output(bigint step)
   if (output->next_thermo > step) {
     output->next_thermo = step;
     output->next = MIN(output->next, step);
-    modify->addstep_compute(step);
+    // every time-dependent compute, also those not invoked since the last output (e.g. when a
+    // dump every step reset their invoked flags): thermo at that step needs the energy tallied
+    modify->addstep_compute_all(step);
   }
 }
 
