@@ -2,12 +2,13 @@
 """MPI equivalence of self-gravity: the uniform-sphere scene on 1, 2 and 3 ranks.
 
 Runs examples/gravity_sphere/in.gravity_sphere (short: n = 8, no reference compute) with
-`mpirun -np N lmp` for each solver (direct summation; pair + MSM), reads the dumps and
+`mpirun -np N lmp` for each solver (direct summation; pair + MSM; pair + PPPM with the ball in
+a periodic box), reads the dumps and
 compares forces and per-atom potential energies particle by particle (matched by position)
 with the 1-rank run. Summation
 order differs between decompositions, so the bound is relative round-off (default 1e-10 of
 each field's largest magnitude).
-Usage: gravity_mpi_equivalence.py WORKDIR [--ranks 1,2,3] [--tol 1e-10] [--solvers direct,msm]
+Usage: gravity_mpi_equivalence.py WORKDIR [--ranks 1,2,3] [--tol 1e-10] [--solvers direct,msm,pppm]
 """
 import argparse
 import os
