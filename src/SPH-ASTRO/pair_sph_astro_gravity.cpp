@@ -9,9 +9,23 @@
 //   F_i = -G sum_j m_i m_j dphi_ij/dr  r_ij/|r_ij|,   r_ij = x_i - x_j
 //
 // (the mean of the two softening lengths: Price & Monaghan 2007, symmetric force of their
-// sec. 2.2 without the grad-h "zeta" correction terms, so energy is conserved exactly only for
-// fixed h). Without kspace this is the whole interaction within the cutoff (direct summation:
-// the cutoff must cover the system). With a gravity kspace style the pair computes the
+// sec. 2.2). Without kspace this is the whole interaction within the cutoff (direct summation
+// over all pairs without a neighbour list: the cutoff must cover the system).
+//
+// Adaptive softening (Price & Monaghan 2007, sec. 3): when h follows the density (pair
+// sph/astro in grad-h mode, fix sph/astro/h iterate: h_i = hfact (m_i/rho_i)^(1/3)) the
+// energy E above depends on h_i(x), and dE/dt = sum_i v_i . grad_i E holds only with the extra
+// force (derived from dE/dt with drho_i/dt = 1/Omega_i sum_j m_j v_ij . grad_i W_ij(h_i);
+// written with this package's sign of phi, phi = -1/r outside the kernel)
+//   F_i^zeta = -(G/2) m_i sum_j m_j [zeta_i/Omega_i grad_i W_ij(h_i)
+//                                    + zeta_j/Omega_j grad_i W_ij(h_j)],
+//   zeta_i = (dh_i/drho_i) sum_{j != i} m_j dphi(r_ij, h_i)/dh_i,   dh_i/drho_i = -h_i/(3 rho_i)
+// (their eqs. for the "gravitational grad-h" term; Phantom implements the same). zeta_i < 0:
+// the term acts like a negative pressure. The sum leaves out j = i because E here has no
+// self-energy G m_i^2 phi(0, h_i)/2 (Price & Monaghan and Phantom include both; either choice
+// conserves energy). Particles whose h is held at the neighbour-list cap (Omega_i = 1 there)
+// get zeta_i = 0: their h does not follow rho. zeta_i needs sums over all neighbours of i, so
+// the partial sums of ghosts are reverse-communicated and the results forwarded. With a gravity kspace style the pair computes the
 // short-range remainder that the kspace does not supply (seed 004 eq. 79, split as in LAMMPS'
 // coul/long and coul/msm):
 //   PPPM (Ewald split, Hockney & Eastwood; LAMMPS pair coul/long):
@@ -51,7 +65,8 @@ PairSPHAstroGravity::PairSPHAstroGravity(LAMMPS *lmp) : Pair(lmp)
   single_enable = 0;
   restartinfo = 1;
   one_coeff = 1;
-  comm_forward = 1;    // softening length h of the ghosts
+  comm_forward = 1;    // softening length h of the ghosts, or zeta
+  comm_reverse = 1;    // partial sums of zeta
   // the long-range solvers check these flags; a non-gravity solver is refused in extract()
   ewaldflag = pppmflag = msmflag = 1;
   ncoultablebits = 0;    // no tabulation (the kspace accuracy estimates include table errors)
@@ -60,6 +75,7 @@ PairSPHAstroGravity::PairSPHAstroGravity(LAMMPS *lmp) : Pair(lmp)
 PairSPHAstroGravity::~PairSPHAstroGravity()
 {
   if (copymode) return;
+  memory->destroy(zeta_);
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
@@ -77,7 +93,7 @@ void PairSPHAstroGravity::allocate()
 }
 
 /* ----------------------------------------------------------------------
-   pair_style sph/astro/gravity CUTOFF [G VALUE] [kernel NAME] [h VALUE]
+   pair_style sph/astro/gravity CUTOFF [G VALUE] [kernel NAME] [h VALUE] [zeta yes|no]
 ------------------------------------------------------------------------- */
 
 void PairSPHAstroGravity::settings(int narg, char **arg)
@@ -88,6 +104,7 @@ void PairSPHAstroGravity::settings(int narg, char **arg)
     error->all(FLERR, "pair_style sph/astro/gravity: cutoff {} must be > 0", arg[0]);
   G_given_ = kernel_given_ = false;
   hfixed_ = 0.0;
+  zeta_on_ = true;
   kernel_ = KernelType::CUBIC;
   int iarg = 1;
   while (iarg < narg) {
@@ -113,8 +130,11 @@ void PairSPHAstroGravity::settings(int narg, char **arg)
                    "pair_style sph/astro/gravity: softening length h = {} must be > 0 (point "
                    "masses need a softening length)",
                    arg[iarg + 1]);
+    } else if (key == "zeta") {
+      zeta_on_ = utils::logical(FLERR, arg[iarg + 1], false, lmp) != 0;
     } else
-      error->all(FLERR, "pair_style sph/astro/gravity: unknown keyword '{}'; allowed: G, kernel, h",
+      error->all(FLERR,
+                 "pair_style sph/astro/gravity: unknown keyword '{}'; allowed: G, kernel, h, zeta",
                  key);
     iarg += 2;
   }
@@ -188,6 +208,7 @@ void PairSPHAstroGravity::init_style()
 
   // the kernel of pair sph/astro, if present
   auto *sph = dynamic_cast<PairSPHAstro *>(force->pair_match("^sph/astro$", 0, 0));
+  sph_ = sph;
   if (sph) {
     if (kernel_given_ && sph->kernel_type() != kernel_)
       error->all(FLERR,
@@ -255,7 +276,9 @@ void PairSPHAstroGravity::init_style()
                      "out",
                      cut_global_, diag);
   }
-  neighbor->add_request(this);
+  // direct summation loops over all pairs itself (for_each_pair); the kspace split needs the
+  // short-range neighbour list
+  if (split_ != Split::NONE) neighbor->add_request(this);
 }
 
 double PairSPHAstroGravity::init_one(int i, int j)
@@ -274,28 +297,149 @@ void PairSPHAstroGravity::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
   // ghosts need this step's softening lengths (fix sph/astro/h may have changed them)
-  if (have_state_) comm->forward_comm(this);
-  const bool cubic = kernel_ == KernelType::CUBIC;
-  if (split_ == Split::NONE) {
-    if (cubic)
-      eval<true, 0>(eflag, vflag);
-    else
-      eval<false, 0>(eflag, vflag);
-  } else if (split_ == Split::EWALD) {
-    if (cubic)
-      eval<true, 1>(eflag, vflag);
-    else
-      eval<false, 1>(eflag, vflag);
-  } else {
-    if (cubic)
-      eval<true, 2>(eflag, vflag);
-    else
-      eval<false, 2>(eflag, vflag);
+  if (have_state_) {
+    comm_stage_ = Stage::H;
+    comm->forward_comm(this);
   }
+  zeta_active_ = zeta_terms_apply();
+  if (zeta_active_) compute_zeta();
+  const bool cubic = kernel_ == KernelType::CUBIC;
+#define SPH_ASTRO_GRAVITY_EVAL(SPLIT)          \
+  if (zeta_active_) {                          \
+    if (cubic)                                 \
+      eval<true, SPLIT, true>(eflag, vflag);   \
+    else                                       \
+      eval<false, SPLIT, true>(eflag, vflag);  \
+  } else {                                     \
+    if (cubic)                                 \
+      eval<true, SPLIT, false>(eflag, vflag);  \
+    else                                       \
+      eval<false, SPLIT, false>(eflag, vflag); \
+  }
+  if (split_ == Split::NONE) {
+    SPH_ASTRO_GRAVITY_EVAL(0)
+  } else if (split_ == Split::EWALD) {
+    SPH_ASTRO_GRAVITY_EVAL(1)
+  } else {
+    SPH_ASTRO_GRAVITY_EVAL(2)
+  }
+#undef SPH_ASTRO_GRAVITY_EVAL
   if (vflag_fdotr) virial_fdotr_compute();
 }
 
-template <bool CUBIC, int SPLIT> void PairSPHAstroGravity::eval(int eflag, int /*vflag*/)
+/* ----------------------------------------------------------------------
+   fn(i, j) for every pair this rank computes, i owned. With kspace: the short-range half
+   neighbour list. Direct summation: all pairs of owned atoms (i < j) and owned-ghost pairs;
+   with newton_pair a ghost pair is taken on one rank only, by the coordinate rule of LAMMPS'
+   half/bin/newton lists (boundaries are not periodic here, so each atom is one ghost at most)
+------------------------------------------------------------------------- */
+
+template <class FN> void PairSPHAstroGravity::for_each_pair(FN &&fn)
+{
+  if (split_ != Split::NONE) {
+    const int inum = list->inum;
+    const int *ilist = list->ilist;
+    const int *numneigh = list->numneigh;
+    int **firstneigh = list->firstneigh;
+    for (int ii = 0; ii < inum; ii++) {
+      const int i = ilist[ii];
+      const int *jlist = firstneigh[i];
+      const int jnum = numneigh[i];
+      for (int jj = 0; jj < jnum; jj++) fn(i, jlist[jj] & NEIGHMASK);
+    }
+    return;
+  }
+  double **x = atom->x;
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  const bool newton_pair = force->newton_pair != 0;
+  for (int i = 0; i < nlocal; i++) {
+    for (int j = i + 1; j < nlocal; j++) fn(i, j);
+    const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
+    for (int j = nlocal; j < nall; j++) {
+      if (newton_pair) {
+        if (x[j][2] < zi) continue;
+        if (x[j][2] == zi) {
+          if (x[j][1] < yi) continue;
+          if (x[j][1] == yi && x[j][0] < xi) continue;
+        }
+      }
+      fn(i, j);
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   the zeta terms apply with pair sph/astro in grad-h mode (its extract_peratom("omega_valid")
+   is non-null), unless switched off; its Omega and rho must be of this step
+------------------------------------------------------------------------- */
+
+bool PairSPHAstroGravity::zeta_terms_apply()
+{
+  if (!zeta_on_ || !have_state_ || !sph_) return false;
+  int ncol;
+  if (!sph_->extract_peratom("omega_valid", ncol)) return false;
+  if (sph_->computed_step() != update->ntimestep || sph_->computed_nlocal() != atom->nlocal)
+    error->all(FLERR,
+               "pair_style sph/astro/gravity: the density and grad-h factors of pair sph/astro "
+               "are not of step {} (zeta terms); list sph/astro before sph/astro/gravity in "
+               "pair_style hybrid/overlay, or use zeta no",
+               update->ntimestep);
+  return true;
+}
+
+void PairSPHAstroGravity::compute_zeta()
+{
+  if (atom->nmax > nmax_) {
+    nmax_ = atom->nmax;
+    memory->destroy(zeta_);
+    memory->create(zeta_, nmax_, "pair:sph/astro/gravity:zeta");
+  }
+  double **x = atom->x;
+  const int *type = atom->type;
+  const double *rmass = atom->rmass;
+  const double *mass = atom->mass;
+  const double *h = state_h();
+  const double *rho = atom->dvector[state_.rho];
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  const int newton_pair = force->newton_pair;
+  const double R = kernel_radius(kernel_);
+  const double hfix = hfixed_;
+  const KernelType kernel = kernel_;
+  for (int i = 0; i < nall; i++) zeta_[i] = 0.0;
+
+  // S_i = sum_{j != i} m_j dphi(r_ij, h_i)/dh_i over the kernel support of h_i
+  for_each_pair([&](int i, int j) {
+    const double hi = h[i] > 0.0 ? h[i] : hfix;
+    const double hj = h[j] > 0.0 ? h[j] : hfix;
+    const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
+    const double rsq = dx * dx + dy * dy + dz * dz;
+    const double Rh = R * MAX(hi, hj);
+    if (rsq >= Rh * Rh) return;
+    const double r = std::sqrt(rsq);
+    const double mi = rmass ? rmass[i] : mass[type[i]];
+    const double mj = rmass ? rmass[j] : mass[type[j]];
+    zeta_[i] += mj * softened_dphidh(kernel, r, hi);
+    if (newton_pair || j < nlocal) zeta_[j] += mi * softened_dphidh(kernel, r, hj);
+  });
+  if (newton_pair) {
+    comm_stage_ = Stage::ZETA;
+    comm->reverse_comm(this);
+  }
+  // zeta_i = dh_i/drho_i S_i, dh/drho = -h/(3 rho); 0 for h held at the cap (does not follow
+  // rho) and for atoms without an SPH smoothing length
+  for (int i = 0; i < nlocal; i++) {
+    if (!(h[i] > 0.0) || h[i] >= sph_->h_limit(i) || !(rho[i] > 0.0))
+      zeta_[i] = 0.0;
+    else
+      zeta_[i] *= -h[i] / (3.0 * rho[i]);
+  }
+  comm_stage_ = Stage::ZETA;
+  comm->forward_comm(this);
+}
+
+template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int eflag, int /*vflag*/)
 {
   double **x = atom->x;
   double **f = atom->f;
@@ -313,6 +457,11 @@ template <bool CUBIC, int SPLIT> void PairSPHAstroGravity::eval(int eflag, int /
   const double g = g_ewald_;
   const double a = cut_global_;    // MSM split radius
   const KSpace *kspace = force->kspace;
+  const KernelType kernel = kernel_;
+  const double *zeta = zeta_;
+  int ncol;
+  const double *omega =
+      ZETA ? static_cast<const double *>(sph_->extract_peratom("omega_valid", ncol)) : nullptr;
 
   auto kernel_eval = [&](double q, double &fp, double &ff) {
     if (CUBIC)
@@ -321,94 +470,91 @@ template <bool CUBIC, int SPLIT> void PairSPHAstroGravity::eval(int eflag, int /
       soft.eval(q, fp, ff);
   };
 
-  const int inum = list->inum;
-  const int *ilist = list->ilist;
-  const int *numneigh = list->numneigh;
-  int **firstneigh = list->firstneigh;
-
-  for (int ii = 0; ii < inum; ii++) {
-    const int i = ilist[ii];
-    const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
-    const double mi = rmass ? rmass[i] : mass[type[i]];
-    const double hi = (hstate && hstate[i] > 0.0) ? hstate[i] : hfix;
-    if (SPLIT != 0 && R * hi > cut_global_)
-      error->one(FLERR,
-                 "pair_style sph/astro/gravity: atom {} has softening support {} x h = {} beyond "
-                 "the cutoff {} on step {}; the short-range part must cover it (larger cutoff)",
-                 atom->tag[i], R, R * hi, cut_global_, update->ntimestep);
-    const double hiinv = 1.0 / hi;
-    double fxi = 0.0, fyi = 0.0, fzi = 0.0;
-    const int *jlist = firstneigh[i];
-    const int jnum = numneigh[i];
-    for (int jj = 0; jj < jnum; jj++) {
-      const int j = jlist[jj] & NEIGHMASK;
-      const double delx = xi - x[j][0], dely = yi - x[j][1], delz = zi - x[j][2];
-      const double rsq = delx * delx + dely * dely + delz * delz;
-      if (rsq >= cutsq) continue;
-      const double mj = rmass ? rmass[j] : mass[type[j]];
-      const double hj = (hstate && hstate[j] > 0.0) ? hstate[j] : hfix;
-      const double r = std::sqrt(rsq);
-
-      // softened - Newtonian: s = phi_ij + 1/r, ds = dphi_ij/dr - 1/r^2, zero beyond both
-      // supports (computed as the difference only inside, so no cancellation outside)
-      double s = 0.0, ds = 0.0;
-      const bool inside = r < R * MAX(hi, hj);
-      if (inside) {
-        double pi, fi;
-        kernel_eval(r * hiinv, pi, fi);
-        double phi = pi * hiinv, dphi = fi * hiinv * hiinv;
-        if (hj != hi) {
-          const double hjinv = 1.0 / hj;
-          double pj, fj;
-          kernel_eval(r * hjinv, pj, fj);
-          phi = 0.5 * (phi + pj * hjinv);
-          dphi = 0.5 * (dphi + fj * hjinv * hjinv);
-        }
-        if (r == 0.0) {    // coincident atoms: finite potential, no force
-          double e0 = phi;
-          if (SPLIT == 1) e0 += 2.0 * g / MY_PIS;
-          if (SPLIT == 2) e0 += kspace->gamma(0.0) / a;
-          if (eflag) ev_tally(i, j, nlocal, newton_pair, G * mi * mj * e0, 0.0, 0.0, 0, 0, 0);
-          continue;
-        }
-        s = phi + 1.0 / r;
-        ds = dphi - 1.0 / rsq;
-      }
-
-      // potential e (per G m_i m_j) and de/dr of the part this pair style supplies
-      double e, de;
-      if (SPLIT == 0) {
-        e = s - 1.0 / r;
-        de = ds + 1.0 / rsq;
-      } else if (SPLIT == 1) {
-        // Newtonian minus the long-range erf(g r)/r of the kspace: -erfc(g r)/r
-        const double erfc_r = std::erfc(g * r) / r;
-        e = s - erfc_r;
-        de = ds + erfc_r / r + 2.0 * g / MY_PIS * std::exp(-g * g * rsq) / r;
-      } else {
-        // Newtonian minus the long-range gamma(r/a)/a of MSM: -(1 - rho gamma(rho))/r
-        const double rho = r / a;
-        e = s - (1.0 - rho * kspace->gamma(rho)) / r;
-        de = ds + (1.0 + rho * rho * kspace->dgamma(rho)) / rsq;
-      }
-      // F_i = -dU/dr r_ij/r with U = G m_i m_j e
-      const double fpair = -G * mi * mj * de / r;
-      fxi += delx * fpair;
-      fyi += dely * fpair;
-      fzi += delz * fpair;
-      if (newton_pair || j < nlocal) {
-        f[j][0] -= delx * fpair;
-        f[j][1] -= dely * fpair;
-        f[j][2] -= delz * fpair;
-      }
-      if (evflag)
-        ev_tally(i, j, nlocal, newton_pair, eflag ? G * mi * mj * e : 0.0, 0.0, fpair, delx, dely,
-                 delz);
+  // softening support check of the short-range part, once per owned atom
+  if (SPLIT != 0) {
+    for (int i = 0; i < nlocal; i++) {
+      const double hi = (hstate && hstate[i] > 0.0) ? hstate[i] : hfix;
+      if (R * hi > cut_global_)
+        error->one(FLERR,
+                   "pair_style sph/astro/gravity: atom {} has softening support {} x h = {} "
+                   "beyond the cutoff {} on step {}; the short-range part must cover it (larger "
+                   "cutoff)",
+                   atom->tag[i], R, R * hi, cut_global_, update->ntimestep);
     }
-    f[i][0] += fxi;
-    f[i][1] += fyi;
-    f[i][2] += fzi;
   }
+
+  for_each_pair([&](int i, int j) {
+    const double delx = x[i][0] - x[j][0], dely = x[i][1] - x[j][1], delz = x[i][2] - x[j][2];
+    const double rsq = delx * delx + dely * dely + delz * delz;
+    if (rsq >= cutsq) return;
+    const double mi = rmass ? rmass[i] : mass[type[i]];
+    const double mj = rmass ? rmass[j] : mass[type[j]];
+    const double hi = (hstate && hstate[i] > 0.0) ? hstate[i] : hfix;
+    const double hj = (hstate && hstate[j] > 0.0) ? hstate[j] : hfix;
+    const double r = std::sqrt(rsq);
+
+    // softened - Newtonian: s = phi_ij + 1/r, ds = dphi_ij/dr - 1/r^2, zero beyond both
+    // supports (computed as the difference only inside, so no cancellation outside)
+    double s = 0.0, ds = 0.0, dzeta = 0.0;
+    const bool inside = r < R * MAX(hi, hj);
+    if (inside) {
+      const double hiinv = 1.0 / hi;
+      double pi, fi;
+      kernel_eval(r * hiinv, pi, fi);
+      double phi = pi * hiinv, dphi = fi * hiinv * hiinv;
+      if (hj != hi) {
+        const double hjinv = 1.0 / hj;
+        double pj, fj;
+        kernel_eval(r * hjinv, pj, fj);
+        phi = 0.5 * (phi + pj * hjinv);
+        dphi = 0.5 * (dphi + fj * hjinv * hjinv);
+      }
+      if (r == 0.0) {    // coincident atoms: finite potential, no force
+        double e0 = phi;
+        if (SPLIT == 1) e0 += 2.0 * g / MY_PIS;
+        if (SPLIT == 2) e0 += kspace->gamma(0.0) / a;
+        if (eflag) ev_tally(i, j, nlocal, newton_pair, G * mi * mj * e0, 0.0, 0.0, 0, 0, 0);
+        return;
+      }
+      s = phi + 1.0 / r;
+      ds = dphi - 1.0 / rsq;
+      // zeta terms (per G m_i m_j): 1/2 [zeta_i/Omega_i dW/dr(h_i) + zeta_j/Omega_j dW/dr(h_j)]
+      if (ZETA)
+        dzeta = 0.5 *
+            (zeta[i] / omega[i] * kernel_dwdr3(kernel, r, hi) +
+             zeta[j] / omega[j] * kernel_dwdr3(kernel, r, hj));
+    }
+
+    // potential e (per G m_i m_j) and de/dr of the part this pair style supplies
+    double e, de;
+    if (SPLIT == 0) {
+      e = s - 1.0 / r;
+      de = ds + 1.0 / rsq;
+    } else if (SPLIT == 1) {
+      // Newtonian minus the long-range erf(g r)/r of the kspace: -erfc(g r)/r
+      const double erfc_r = std::erfc(g * r) / r;
+      e = s - erfc_r;
+      de = ds + erfc_r / r + 2.0 * g / MY_PIS * std::exp(-g * g * rsq) / r;
+    } else {
+      // Newtonian minus the long-range gamma(r/a)/a of MSM: -(1 - rho gamma(rho))/r
+      const double rho = r / a;
+      e = s - (1.0 - rho * kspace->gamma(rho)) / r;
+      de = ds + (1.0 + rho * rho * kspace->dgamma(rho)) / rsq;
+    }
+    // F_i = -dU/dr r_ij/r with U = G m_i m_j e, plus the zeta force along r_ij
+    const double fpair = -G * mi * mj * (de + dzeta) / r;
+    f[i][0] += delx * fpair;
+    f[i][1] += dely * fpair;
+    f[i][2] += delz * fpair;
+    if (newton_pair || j < nlocal) {
+      f[j][0] -= delx * fpair;
+      f[j][1] -= dely * fpair;
+      f[j][2] -= delz * fpair;
+    }
+    if (evflag)
+      ev_tally(i, j, nlocal, newton_pair, eflag ? G * mi * mj * e : 0.0, 0.0, fpair, delx, dely,
+               delz);
+  });
 }
 
 /* ---------------------------------------------------------------------- */
@@ -416,15 +562,40 @@ template <bool CUBIC, int SPLIT> void PairSPHAstroGravity::eval(int eflag, int /
 int PairSPHAstroGravity::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/,
                                            int * /*pbc*/)
 {
-  const double *h = state_h();
-  for (int k = 0; k < n; k++) buf[k] = h[list[k]];
+  const double *v = comm_stage_ == Stage::ZETA ? zeta_ : state_h();
+  for (int k = 0; k < n; k++) buf[k] = v[list[k]];
   return n;
 }
 
 void PairSPHAstroGravity::unpack_forward_comm(int n, int first, double *buf)
 {
-  double *h = state_h();
-  for (int k = 0; k < n; k++) h[first + k] = buf[k];
+  double *v = comm_stage_ == Stage::ZETA ? zeta_ : state_h();
+  for (int k = 0; k < n; k++) v[first + k] = buf[k];
+}
+
+// reverse communication: the ghosts' partial sums of zeta
+int PairSPHAstroGravity::pack_reverse_comm(int n, int first, double *buf)
+{
+  for (int k = 0; k < n; k++) buf[k] = zeta_[first + k];
+  return n;
+}
+
+void PairSPHAstroGravity::unpack_reverse_comm(int n, int *list, double *buf)
+{
+  for (int k = 0; k < n; k++) zeta_[list[k]] += buf[k];
+}
+
+// zeta: zeta_i of owned and ghost atoms, while the zeta terms are active (else null)
+void *PairSPHAstroGravity::extract_peratom(const char *name, int &ncol)
+{
+  ncol = 0;
+  if (strcmp(name, "zeta") == 0) return zeta_active_ ? (void *) zeta_ : nullptr;
+  return nullptr;
+}
+
+double PairSPHAstroGravity::memory_usage()
+{
+  return nmax_ * sizeof(double) + Pair::memory_usage();
 }
 
 /* ----------------------------------------------------------------------
@@ -475,28 +646,29 @@ void PairSPHAstroGravity::read_restart(FILE *fp)
 void PairSPHAstroGravity::write_restart_settings(FILE *fp)
 {
   const int kernel = static_cast<int>(kernel_);
-  const int flags[2] = {G_given_ ? 1 : 0, kernel_given_ ? 1 : 0};
+  const int flags[3] = {G_given_ ? 1 : 0, kernel_given_ ? 1 : 0, zeta_on_ ? 1 : 0};
   fwrite(&cut_global_, sizeof(double), 1, fp);
   fwrite(&G_, sizeof(double), 1, fp);
   fwrite(&hfixed_, sizeof(double), 1, fp);
   fwrite(&kernel, sizeof(int), 1, fp);
-  fwrite(flags, sizeof(int), 2, fp);
+  fwrite(flags, sizeof(int), 3, fp);
 }
 
 void PairSPHAstroGravity::read_restart_settings(FILE *fp)
 {
   double d[3];
-  int ints[3];
+  int ints[4];
   if (comm->me == 0) {
     utils::sfread(FLERR, d, sizeof(double), 3, fp, nullptr, error);
-    utils::sfread(FLERR, ints, sizeof(int), 3, fp, nullptr, error);
+    utils::sfread(FLERR, ints, sizeof(int), 4, fp, nullptr, error);
   }
   MPI_Bcast(d, 3, MPI_DOUBLE, 0, world);
-  MPI_Bcast(ints, 3, MPI_INT, 0, world);
+  MPI_Bcast(ints, 4, MPI_INT, 0, world);
   cut_global_ = d[0];
   G_ = d[1];
   hfixed_ = d[2];
   kernel_ = static_cast<KernelType>(ints[0]);
   G_given_ = ints[1] != 0;
   kernel_given_ = ints[2] != 0;
+  zeta_on_ = ints[3] != 0;
 }
