@@ -55,6 +55,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 using namespace LAMMPS_NS;
 using namespace SPHAstro;
@@ -276,7 +277,7 @@ void PairSPHAstroGravity::init_style()
                      "out",
                      cut_global_, diag);
   }
-  // direct summation loops over all pairs itself (for_each_pair); the kspace split needs the
+  // direct summation sums over all atoms itself (gather_all); the kspace split needs the
   // short-range neighbour list
   if (split_ != Split::NONE) neighbor->add_request(this);
 }
@@ -288,7 +289,9 @@ double PairSPHAstroGravity::init_one(int i, int j)
                "pair_style sph/astro/gravity: pair_coeff for types {} {} is not set; gravity "
                "acts between all atoms (pair_coeff * *)",
                i, j);
-  return cut_global_;
+  // direct summation needs neither a neighbour list nor ghost atoms: no cutoff for LAMMPS, so
+  // that under hybrid/overlay the lists (and ghost shell) of pair sph/astro keep their size
+  return split_ == Split::NONE ? 0.0 : cut_global_;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -301,6 +304,7 @@ void PairSPHAstroGravity::compute(int eflag, int vflag)
     comm_stage_ = Stage::H;
     comm->forward_comm(this);
   }
+  if (split_ == Split::NONE) gather_all();
   zeta_active_ = zeta_terms_apply();
   if (zeta_active_) compute_zeta();
   const bool cubic = kernel_ == KernelType::CUBIC;
@@ -328,45 +332,48 @@ void PairSPHAstroGravity::compute(int eflag, int vflag)
 }
 
 /* ----------------------------------------------------------------------
-   fn(i, j) for every pair this rank computes, i owned. With kspace: the short-range half
-   neighbour list. Direct summation: all pairs of owned atoms (i < j) and owned-ghost pairs;
-   with newton_pair a ghost pair is taken on one rank only, by the coordinate rule of LAMMPS'
-   half/bin/newton lists (boundaries are not periodic here, so each atom is one ghost at most)
+   direct summation: every rank gathers position, mass and h of all atoms (5 values each) and
+   sums over all of them for its owned atoms, without ghosts or a neighbour list: in-rank pairs
+   once (Newton's third law), pairs with atoms of other ranks on both ranks (half the energy
+   each). Ghost atoms and neighbour lists then only serve the other pair styles.
 ------------------------------------------------------------------------- */
 
-template <class FN> void PairSPHAstroGravity::for_each_pair(FN &&fn)
+void PairSPHAstroGravity::gather_all()
 {
-  if (split_ != Split::NONE) {
-    const int inum = list->inum;
-    const int *ilist = list->ilist;
-    const int *numneigh = list->numneigh;
-    int **firstneigh = list->firstneigh;
-    for (int ii = 0; ii < inum; ii++) {
-      const int i = ilist[ii];
-      const int *jlist = firstneigh[i];
-      const int jnum = numneigh[i];
-      for (int jj = 0; jj < jnum; jj++) fn(i, jlist[jj] & NEIGHMASK);
-    }
-    return;
-  }
-  double **x = atom->x;
   const int nlocal = atom->nlocal;
-  const int nall = nlocal + atom->nghost;
-  const bool newton_pair = force->newton_pair != 0;
-  for (int i = 0; i < nlocal; i++) {
-    for (int j = i + 1; j < nlocal; j++) fn(i, j);
-    const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
-    for (int j = nlocal; j < nall; j++) {
-      if (newton_pair) {
-        if (x[j][2] < zi) continue;
-        if (x[j][2] == zi) {
-          if (x[j][1] < yi) continue;
-          if (x[j][1] == yi && x[j][0] < xi) continue;
-        }
-      }
-      fn(i, j);
-    }
+  const int nprocs = comm->nprocs;
+  double **x = atom->x;
+  const int *type = atom->type;
+  const double *rmass = atom->rmass;
+  const double *mass = atom->mass;
+  const double *h = state_h();
+  std::vector<int> counts(nprocs), displs(nprocs);
+  MPI_Allgather(&nlocal, 1, MPI_INT, counts.data(), 1, MPI_INT, world);
+  int ntotal = 0;
+  for (int p = 0; p < nprocs; p++) {
+    displs[p] = ntotal;
+    ntotal += counts[p];
   }
+  offset_ = displs[comm->me];
+  ntotal_ = ntotal;
+  std::vector<double> mine(5 * nlocal);
+  for (int i = 0; i < nlocal; i++) {
+    mine[5 * i + 0] = x[i][0];
+    mine[5 * i + 1] = x[i][1];
+    mine[5 * i + 2] = x[i][2];
+    mine[5 * i + 3] = rmass ? rmass[i] : mass[type[i]];
+    mine[5 * i + 4] = (h && h[i] > 0.0) ? h[i] : hfixed_;
+  }
+  all_.resize(5 * (size_t) ntotal);
+  std::vector<int> counts5(nprocs), displs5(nprocs);
+  for (int p = 0; p < nprocs; p++) {
+    counts5[p] = 5 * counts[p];
+    displs5[p] = 5 * displs[p];
+  }
+  MPI_Allgatherv(mine.data(), 5 * nlocal, MPI_DOUBLE, all_.data(), counts5.data(), displs5.data(),
+                 MPI_DOUBLE, world);
+  gather_counts_ = counts;
+  gather_displs_ = displs;
 }
 
 /* ----------------------------------------------------------------------
@@ -388,6 +395,9 @@ bool PairSPHAstroGravity::zeta_terms_apply()
   return true;
 }
 
+// zeta_i = dh_i/drho_i S_i, S_i = sum_{j != i} m_j dphi(r_ij, h_i)/dh_i, dh/drho = -h/(3 rho);
+// stored as zeta_i (zeta_) and zeta_i/Omega_i of all atoms (gathered, direct summation) or of
+// owned + ghost atoms (zeta_over_omega_, kspace split)
 void PairSPHAstroGravity::compute_zeta()
 {
   if (atom->nmax > nmax_) {
@@ -401,6 +411,8 @@ void PairSPHAstroGravity::compute_zeta()
   const double *mass = atom->mass;
   const double *h = state_h();
   const double *rho = atom->dvector[state_.rho];
+  int ncol;
+  const double *omega = static_cast<const double *>(sph_->extract_peratom("omega_valid", ncol));
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
   const int newton_pair = force->newton_pair;
@@ -409,35 +421,75 @@ void PairSPHAstroGravity::compute_zeta()
   const KernelType kernel = kernel_;
   for (int i = 0; i < nall; i++) zeta_[i] = 0.0;
 
-  // S_i = sum_{j != i} m_j dphi(r_ij, h_i)/dh_i over the kernel support of h_i
-  for_each_pair([&](int i, int j) {
-    const double hi = h[i] > 0.0 ? h[i] : hfix;
-    const double hj = h[j] > 0.0 ? h[j] : hfix;
-    const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
-    const double rsq = dx * dx + dy * dy + dz * dz;
-    const double Rh = R * MAX(hi, hj);
-    if (rsq >= Rh * Rh) return;
-    const double r = std::sqrt(rsq);
-    const double mi = rmass ? rmass[i] : mass[type[i]];
-    const double mj = rmass ? rmass[j] : mass[type[j]];
-    zeta_[i] += mj * softened_dphidh(kernel, r, hi);
-    if (newton_pair || j < nlocal) zeta_[j] += mi * softened_dphidh(kernel, r, hj);
-  });
-  if (newton_pair) {
-    comm_stage_ = Stage::ZETA;
-    comm->reverse_comm(this);
+  if (split_ == Split::NONE) {
+    const double *all = all_.data();
+    const int n = ntotal_;
+    for (int i = 0; i < nlocal; i++) {
+      const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
+      const double hi = h[i] > 0.0 ? h[i] : hfix;
+      const double Rhsq = R * R * hi * hi;
+      const int gi = offset_ + i;
+      double sum = 0.0;
+      for (int gj = 0; gj < n; gj++) {
+        const double *aj = all + 5 * gj;
+        const double dx = xi - aj[0], dy = yi - aj[1], dz = zi - aj[2];
+        const double rsq = dx * dx + dy * dy + dz * dz;
+        if (rsq >= Rhsq || gj == gi) continue;
+        sum += aj[3] * softened_dphidh(kernel, std::sqrt(rsq), hi);
+      }
+      zeta_[i] = sum;
+    }
+  } else {
+    const int inum = list->inum;
+    const int *ilist = list->ilist;
+    const int *numneigh = list->numneigh;
+    int **firstneigh = list->firstneigh;
+    for (int ii = 0; ii < inum; ii++) {
+      const int i = ilist[ii];
+      const double hi = h[i] > 0.0 ? h[i] : hfix;
+      const double mi = rmass ? rmass[i] : mass[type[i]];
+      const int *jlist = firstneigh[i];
+      const int jnum = numneigh[i];
+      for (int jj = 0; jj < jnum; jj++) {
+        const int j = jlist[jj] & NEIGHMASK;
+        const double hj = h[j] > 0.0 ? h[j] : hfix;
+        const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
+        const double rsq = dx * dx + dy * dy + dz * dz;
+        const double Rh = R * MAX(hi, hj);
+        if (rsq >= Rh * Rh) continue;
+        const double r = std::sqrt(rsq);
+        zeta_[i] += (rmass ? rmass[j] : mass[type[j]]) * softened_dphidh(kernel, r, hi);
+        if (newton_pair || j < nlocal) zeta_[j] += mi * softened_dphidh(kernel, r, hj);
+      }
+    }
+    if (newton_pair) {
+      comm_stage_ = Stage::ZETA;
+      comm->reverse_comm(this);
+    }
   }
-  // zeta_i = dh_i/drho_i S_i, dh/drho = -h/(3 rho); 0 for h held at the cap (does not follow
-  // rho) and for atoms without an SPH smoothing length
+  // 0 for h held at the cap (it does not follow rho) and atoms without SPH smoothing length
   for (int i = 0; i < nlocal; i++) {
     if (!(h[i] > 0.0) || h[i] >= sph_->h_limit(i) || !(rho[i] > 0.0))
       zeta_[i] = 0.0;
     else
       zeta_[i] *= -h[i] / (3.0 * rho[i]);
   }
-  comm_stage_ = Stage::ZETA;
-  comm->forward_comm(this);
+  // zeta/Omega of the partners
+  if (split_ == Split::NONE) {
+    std::vector<double> mine(nlocal);
+    for (int i = 0; i < nlocal; i++) mine[i] = zeta_[i] / omega[i];
+    zo_all_.resize(ntotal_);
+    MPI_Allgatherv(mine.data(), nlocal, MPI_DOUBLE, zo_all_.data(), gather_counts_.data(),
+                   gather_displs_.data(), MPI_DOUBLE, world);
+  } else {
+    comm_stage_ = Stage::ZETA;
+    comm->forward_comm(this);
+  }
 }
+
+/* ----------------------------------------------------------------------
+   forces and energy; one pair term for both drivers (gathered atoms or neighbour list)
+------------------------------------------------------------------------- */
 
 template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int eflag, int /*vflag*/)
 {
@@ -458,10 +510,6 @@ template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int e
   const double a = cut_global_;    // MSM split radius
   const KSpace *kspace = force->kspace;
   const KernelType kernel = kernel_;
-  const double *zeta = zeta_;
-  int ncol;
-  const double *omega =
-      ZETA ? static_cast<const double *>(sph_->extract_peratom("omega_valid", ncol)) : nullptr;
 
   auto kernel_eval = [&](double q, double &fp, double &ff) {
     if (CUBIC)
@@ -470,34 +518,15 @@ template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int e
       soft.eval(q, fp, ff);
   };
 
-  // softening support check of the short-range part, once per owned atom
-  if (SPLIT != 0) {
-    for (int i = 0; i < nlocal; i++) {
-      const double hi = (hstate && hstate[i] > 0.0) ? hstate[i] : hfix;
-      if (R * hi > cut_global_)
-        error->one(FLERR,
-                   "pair_style sph/astro/gravity: atom {} has softening support {} x h = {} "
-                   "beyond the cutoff {} on step {}; the short-range part must cover it (larger "
-                   "cutoff)",
-                   atom->tag[i], R, R * hi, cut_global_, update->ntimestep);
-    }
-  }
-
-  for_each_pair([&](int i, int j) {
-    const double delx = x[i][0] - x[j][0], dely = x[i][1] - x[j][1], delz = x[i][2] - x[j][2];
-    const double rsq = delx * delx + dely * dely + delz * delz;
-    if (rsq >= cutsq) return;
-    const double mi = rmass ? rmass[i] : mass[type[i]];
-    const double mj = rmass ? rmass[j] : mass[type[j]];
-    const double hi = (hstate && hstate[i] > 0.0) ? hstate[i] : hfix;
-    const double hj = (hstate && hstate[j] > 0.0) ? hstate[j] : hfix;
+  // potential e (per G m_i m_j) of the part this pair style supplies and D = de/dr plus the zeta
+  // terms, so that F_i = -G m_i m_j D r_ij/r; zoi, zoj: zeta/Omega of the two atoms
+  auto pair_term = [&](double rsq, double hi, double hj, double zoi, double zoj, double &e,
+                       double &D) {
     const double r = std::sqrt(rsq);
-
     // softened - Newtonian: s = phi_ij + 1/r, ds = dphi_ij/dr - 1/r^2, zero beyond both
     // supports (computed as the difference only inside, so no cancellation outside)
     double s = 0.0, ds = 0.0, dzeta = 0.0;
-    const bool inside = r < R * MAX(hi, hj);
-    if (inside) {
+    if (r < R * MAX(hi, hj)) {
       const double hiinv = 1.0 / hi;
       double pi, fi;
       kernel_eval(r * hiinv, pi, fi);
@@ -510,23 +539,19 @@ template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int e
         dphi = 0.5 * (dphi + fj * hjinv * hjinv);
       }
       if (r == 0.0) {    // coincident atoms: finite potential, no force
-        double e0 = phi;
-        if (SPLIT == 1) e0 += 2.0 * g / MY_PIS;
-        if (SPLIT == 2) e0 += kspace->gamma(0.0) / a;
-        if (eflag) ev_tally(i, j, nlocal, newton_pair, G * mi * mj * e0, 0.0, 0.0, 0, 0, 0);
+        e = phi;
+        if (SPLIT == 1) e += 2.0 * g / MY_PIS;
+        if (SPLIT == 2) e += kspace->gamma(0.0) / a;
+        D = 0.0;
         return;
       }
       s = phi + 1.0 / r;
       ds = dphi - 1.0 / rsq;
-      // zeta terms (per G m_i m_j): 1/2 [zeta_i/Omega_i dW/dr(h_i) + zeta_j/Omega_j dW/dr(h_j)]
+      // zeta terms: 1/2 [zeta_i/Omega_i dW/dr(h_i) + zeta_j/Omega_j dW/dr(h_j)]
       if (ZETA)
-        dzeta = 0.5 *
-            (zeta[i] / omega[i] * kernel_dwdr3(kernel, r, hi) +
-             zeta[j] / omega[j] * kernel_dwdr3(kernel, r, hj));
+        dzeta = 0.5 * (zoi * kernel_dwdr3(kernel, r, hi) + zoj * kernel_dwdr3(kernel, r, hj));
     }
-
-    // potential e (per G m_i m_j) and de/dr of the part this pair style supplies
-    double e, de;
+    double de;
     if (SPLIT == 0) {
       e = s - 1.0 / r;
       de = ds + 1.0 / rsq;
@@ -541,20 +566,100 @@ template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int e
       e = s - (1.0 - rho * kspace->gamma(rho)) / r;
       de = ds + (1.0 + rho * rho * kspace->dgamma(rho)) / rsq;
     }
-    // F_i = -dU/dr r_ij/r with U = G m_i m_j e, plus the zeta force along r_ij
-    const double fpair = -G * mi * mj * (de + dzeta) / r;
-    f[i][0] += delx * fpair;
-    f[i][1] += dely * fpair;
-    f[i][2] += delz * fpair;
-    if (newton_pair || j < nlocal) {
-      f[j][0] -= delx * fpair;
-      f[j][1] -= dely * fpair;
-      f[j][2] -= delz * fpair;
+    D = (de + dzeta) / r;
+  };
+
+  if (SPLIT == 0) {
+    // direct summation over the gathered atoms
+    const double *all = all_.data();
+    const double *zo_all = ZETA ? zo_all_.data() : nullptr;
+    const int n = ntotal_;
+    const int first = offset_, last = offset_ + nlocal;
+    for (int i = 0; i < nlocal; i++) {
+      const int gi = first + i;
+      const double *ai = all + 5 * gi;
+      const double xi = ai[0], yi = ai[1], zi = ai[2], mi = ai[3], hi = ai[4];
+      const double zoi = ZETA ? zo_all[gi] : 0.0;
+      double fxi = 0.0, fyi = 0.0, fzi = 0.0;
+      for (int gj = 0; gj < n; gj++) {
+        const bool mine = gj >= first && gj < last;
+        if (mine && gj <= gi) continue;    // in-rank pairs once
+        const double *aj = all + 5 * gj;
+        const double delx = xi - aj[0], dely = yi - aj[1], delz = zi - aj[2];
+        const double rsq = delx * delx + dely * dely + delz * delz;
+        if (rsq >= cutsq) continue;
+        double e, D;
+        pair_term(rsq, hi, aj[4], zoi, ZETA ? zo_all[gj] : 0.0, e, D);
+        const double mm = G * mi * aj[3];
+        const double fpair = -mm * D;
+        fxi += delx * fpair;
+        fyi += dely * fpair;
+        fzi += delz * fpair;
+        if (mine) {
+          const int j = gj - first;
+          f[j][0] -= delx * fpair;
+          f[j][1] -= dely * fpair;
+          f[j][2] -= delz * fpair;
+          if (evflag) ev_tally(i, j, nlocal, 1, eflag ? mm * e : 0.0, 0.0, fpair, delx, dely, delz);
+        } else if (evflag)    // the other rank tallies the other half
+          ev_tally(i, nlocal, nlocal, 0, eflag ? mm * e : 0.0, 0.0, fpair, delx, dely, delz);
+      }
+      f[i][0] += fxi;
+      f[i][1] += fyi;
+      f[i][2] += fzi;
     }
-    if (evflag)
-      ev_tally(i, j, nlocal, newton_pair, eflag ? G * mi * mj * e : 0.0, 0.0, fpair, delx, dely,
-               delz);
-  });
+    return;
+  }
+
+  // short-range part over the neighbour list; the softening support must be inside the cutoff
+  const double *zeta = zeta_;
+  int ncol;
+  const double *omega =
+      ZETA ? static_cast<const double *>(sph_->extract_peratom("omega_valid", ncol)) : nullptr;
+  const int inum = list->inum;
+  const int *ilist = list->ilist;
+  const int *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
+    const double mi = rmass ? rmass[i] : mass[type[i]];
+    const double hi = (hstate && hstate[i] > 0.0) ? hstate[i] : hfix;
+    if (R * hi > cut_global_)
+      error->one(FLERR,
+                 "pair_style sph/astro/gravity: atom {} has softening support {} x h = {} beyond "
+                 "the cutoff {} on step {}; the short-range part must cover it (larger cutoff)",
+                 atom->tag[i], R, R * hi, cut_global_, update->ntimestep);
+    const double zoi = ZETA ? zeta[i] / omega[i] : 0.0;
+    double fxi = 0.0, fyi = 0.0, fzi = 0.0;
+    const int *jlist = firstneigh[i];
+    const int jnum = numneigh[i];
+    for (int jj = 0; jj < jnum; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const double delx = xi - x[j][0], dely = yi - x[j][1], delz = zi - x[j][2];
+      const double rsq = delx * delx + dely * dely + delz * delz;
+      if (rsq >= cutsq) continue;
+      const double mj = rmass ? rmass[j] : mass[type[j]];
+      const double hj = (hstate && hstate[j] > 0.0) ? hstate[j] : hfix;
+      double e, D;
+      pair_term(rsq, hi, hj, zoi, ZETA ? zeta[j] / omega[j] : 0.0, e, D);
+      const double mm = G * mi * mj;
+      const double fpair = -mm * D;
+      fxi += delx * fpair;
+      fyi += dely * fpair;
+      fzi += delz * fpair;
+      if (newton_pair || j < nlocal) {
+        f[j][0] -= delx * fpair;
+        f[j][1] -= dely * fpair;
+        f[j][2] -= delz * fpair;
+      }
+      if (evflag)
+        ev_tally(i, j, nlocal, newton_pair, eflag ? mm * e : 0.0, 0.0, fpair, delx, dely, delz);
+    }
+    f[i][0] += fxi;
+    f[i][1] += fyi;
+    f[i][2] += fzi;
+  }
 }
 
 /* ---------------------------------------------------------------------- */

@@ -15,6 +15,8 @@ PairStyle(sph/astro/gravity,PairSPHAstroGravity);
 #include "sph_astro_kernel.h"
 #include "sph_astro_state.h"
 
+#include <vector>
+
 namespace LAMMPS_NS {
 
 class PairSPHAstroGravity : public Pair {
@@ -83,7 +85,12 @@ class PairSPHAstroGravity : public Pair {
   double *state_h() const;
   bool zeta_terms_apply();
   void compute_zeta();
-  template <class FN> void for_each_pair(FN &&fn);
+  // direct summation: x, y, z, m, h of all atoms of all ranks (gather_all), zeta/Omega of all
+  // atoms; this rank's atoms start at offset_
+  std::vector<double> all_, zo_all_;
+  std::vector<int> gather_counts_, gather_displs_;
+  int offset_ = 0, ntotal_ = 0;
+  void gather_all();
   template <bool CUBIC, int SPLIT, bool ZETA> void eval(int eflag, int vflag);
 };
 
