@@ -155,7 +155,37 @@ def analyse_toystar(dump_path, run):
             "n_measured": e1["n"]}
 
 
+def analyse_evrard(dump_path, run):
+    """Evrard collapse (examples/evrard/in.evrard): from the log, the largest |relative total
+    energy error| over the run, the minimum of the potential energy W (maximum compression) and
+    its time, and K, U, W at t = 0.8 and 3 (examples/evrard/analyse.py)."""
+    import importlib.util
+    path = os.path.join(ROOT, "examples", "evrard", "analyse.py")
+    spec = importlib.util.spec_from_file_location("evrard_analyse", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    rows, _ = module.read_log(os.path.join(os.path.dirname(dump_path), "log.lammps"))
+    K, U, W, ERR = "c_sum[8]", "c_sum[9]", "c_sum[10]", "c_sum[12]"
+    rmin = min(rows, key=lambda r: r[W])
+    out = {"energy": max(abs(r[ERR]) for r in rows), "wmin": -rmin[W], "tmin": rmin["Time"],
+           "n_measured": len(rows)}
+    for t, tag in ((0.8, "08"), (3.0, "3")):
+        out["W" + tag] = -(module.at_time(rows, t, W) or float("nan"))
+        out["U" + tag] = module.at_time(rows, t, U) or float("nan")
+    return out
+
+
 SCENES: Dict[str, Scene] = {
+    "evrard": Scene(
+        input="examples/evrard/in.evrard", res_var="n", out_var="out",
+        default_res=(6, 8, 12), analyse=analyse_evrard,
+        errors=(("energy", "dE_max"), ("wmin", "-W_min"), ("tmin", "t_Wmin"), ("W08", "-W(0.8)"),
+                ("U08", "U(0.8)"), ("W3", "-W(3)"), ("U3", "U(3)")),
+        plot=("energy", "wmin"), fit="energy",
+        notes="Evrard collapse, 3D, to t = 3: N ~ 2.1 n^3; dE_max: largest |relative total-energy "
+              "error| over the run; -W_min: depth of the potential energy at maximum compression "
+              "(no exact value: watch it converge with N)"),
+
     "sod": Scene(
         input="examples/sod/in.sod", res_var="nx", out_var="out",
         default_res=(32, 48, 64, 96, 128), analyse=analyse_sod,

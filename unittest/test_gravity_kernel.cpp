@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace SPHAstro;
@@ -129,6 +130,40 @@ TEST_P(SoftenedGravityTest, PairFormIsTheMeanOfBothSofteningLengths)
     EXPECT_DOUBLE_EQ(f, 0.5 * (fi + fj));
     EXPECT_DOUBLE_EQ(p, pswap);    // symmetric: Newton's third law holds pair by pair
     EXPECT_DOUBLE_EQ(f, fswap);
+  }
+}
+
+TEST_P(SoftenedGravityTest, DphiDhMatchesFiniteDifferences)
+{
+  // dphi/dh = -(fpot + q fforce)/h^2 (adaptive-softening zeta terms) against the central
+  // difference of phi(r, h) in h, O(eps^2) accurate, at points away from the piece edges
+  const KernelType k = GetParam();
+  const double h = 0.7, eps = 1e-5;
+  const double R = kernel_radius(k);
+  for (double q : {0.0, 0.13, 0.55, 0.93, 1.27, 1.71, 1.95, 2.4, 2.9, 3.5}) {
+    const double r = q * h;
+    double pp, pm, f;
+    softened(k, r, h + eps, pp, f);
+    softened(k, r, h - eps, pm, f);
+    const double fd = (pp - pm) / (2.0 * eps);
+    const double exact = softened_dphidh(k, r, h);
+    if (q >= R) {
+      EXPECT_EQ(exact, 0.0) << "q = " << q;    // outside the support phi = -1/r
+      continue;
+    }
+    EXPECT_NEAR(exact, fd, 1e-7 * std::max(1.0, std::fabs(fd))) << "q = " << q;
+  }
+  // a wider kernel makes the potential at the centre shallower: dphi/dh(0) = -fpot(0)/h^2 > 0
+  EXPECT_GT(softened_dphidh(k, 0.0, h), 0.0);
+}
+
+TEST_P(SoftenedGravityTest, KernelGradientOfTheZetaTermsIsDWdr)
+{
+  const KernelType k = GetParam();
+  const double h = 0.8;
+  for (double q : {0.1, 0.6, 1.2, 1.8, 2.5}) {
+    const double r = q * h;
+    EXPECT_NEAR(kernel_dwdr3(k, r, h), kernel_dWdr(k, 3, r, h), 1e-13) << "q = " << q;
   }
 }
 

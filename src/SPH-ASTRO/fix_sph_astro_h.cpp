@@ -41,6 +41,7 @@
 #include "group.h"
 #include "memory.h"
 #include "modify.h"
+#include "neigh_request.h"
 #include "neighbor.h"
 #include "pair_sph_astro.h"
 #include "timer.h"
@@ -158,10 +159,14 @@ void FixSPHAstroH::setup_collections()
     error->all(FLERR,
                "fix sph/astro/h collections needs neighbor style multi (e.g. neighbor 0.1 "
                "multi), got another neighbor style");
-  if (force->pair != pair_)
-    error->all(FLERR,
-               "fix sph/astro/h collections: pair_style sph/astro must be the only pair style "
-               "(the collections size the lists of every pair style by h)");
+  // the collections size the neighbour lists of every pair style by h: other pair styles may
+  // only join (hybrid/overlay) if they use no list, as sph/astro/gravity without kspace
+  for (const auto *request : neighbor->get_pair_requests())
+    if (request->get_requestor() != (void *) pair_)
+      error->all(FLERR,
+                 "fix sph/astro/h collections: pair_style sph/astro must be the only pair style "
+                 "with a neighbour list (the collections size the lists of every pair style by "
+                 "h); sph/astro/gravity qualifies only without kspace (direct summation)");
   const double *h = atom->dvector[state_.h];
   double hmin_local = INFINITY, hmin;
   for (int i = 0; i < atom->nlocal; i++) hmin_local = MIN(hmin_local, h[i]);

@@ -9,9 +9,23 @@
 //   F_i = -G sum_j m_i m_j dphi_ij/dr  r_ij/|r_ij|,   r_ij = x_i - x_j
 //
 // (the mean of the two softening lengths: Price & Monaghan 2007, symmetric force of their
-// sec. 2.2 without the grad-h "zeta" correction terms, so energy is conserved exactly only for
-// fixed h). Without kspace this is the whole interaction within the cutoff (direct summation:
-// the cutoff must cover the system). With a gravity kspace style the pair computes the
+// sec. 2.2). Without kspace this is the whole interaction within the cutoff (direct summation
+// over all pairs without a neighbour list: the cutoff must cover the system).
+//
+// Adaptive softening (Price & Monaghan 2007, sec. 3): when h follows the density (pair
+// sph/astro in grad-h mode, fix sph/astro/h iterate: h_i = hfact (m_i/rho_i)^(1/3)) the
+// energy E above depends on h_i(x), and dE/dt = sum_i v_i . grad_i E holds only with the extra
+// force (derived from dE/dt with drho_i/dt = 1/Omega_i sum_j m_j v_ij . grad_i W_ij(h_i);
+// written with this package's sign of phi, phi = -1/r outside the kernel)
+//   F_i^zeta = -(G/2) m_i sum_j m_j [zeta_i/Omega_i grad_i W_ij(h_i)
+//                                    + zeta_j/Omega_j grad_i W_ij(h_j)],
+//   zeta_i = (dh_i/drho_i) sum_{j != i} m_j dphi(r_ij, h_i)/dh_i,   dh_i/drho_i = -h_i/(3 rho_i)
+// (their eqs. for the "gravitational grad-h" term; Phantom implements the same). zeta_i < 0:
+// the term acts like a negative pressure. The sum leaves out j = i because E here has no
+// self-energy G m_i^2 phi(0, h_i)/2 (Price & Monaghan and Phantom include both; either choice
+// conserves energy). Particles whose h is held at the neighbour-list cap (Omega_i = 1 there)
+// get zeta_i = 0: their h does not follow rho. zeta_i needs sums over all neighbours of i, so
+// the partial sums of ghosts are reverse-communicated and the results forwarded. With a gravity kspace style the pair computes the
 // short-range remainder that the kspace does not supply (seed 004 eq. 79, split as in LAMMPS'
 // coul/long and coul/msm):
 //   PPPM (Ewald split, Hockney & Eastwood; LAMMPS pair coul/long):
@@ -41,6 +55,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 using namespace LAMMPS_NS;
 using namespace SPHAstro;
@@ -51,7 +66,8 @@ PairSPHAstroGravity::PairSPHAstroGravity(LAMMPS *lmp) : Pair(lmp)
   single_enable = 0;
   restartinfo = 1;
   one_coeff = 1;
-  comm_forward = 1;    // softening length h of the ghosts
+  comm_forward = 1;    // softening length h of the ghosts, or zeta
+  comm_reverse = 1;    // partial sums of zeta
   // the long-range solvers check these flags; a non-gravity solver is refused in extract()
   ewaldflag = pppmflag = msmflag = 1;
   ncoultablebits = 0;    // no tabulation (the kspace accuracy estimates include table errors)
@@ -60,6 +76,7 @@ PairSPHAstroGravity::PairSPHAstroGravity(LAMMPS *lmp) : Pair(lmp)
 PairSPHAstroGravity::~PairSPHAstroGravity()
 {
   if (copymode) return;
+  memory->destroy(zeta_);
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
@@ -77,7 +94,7 @@ void PairSPHAstroGravity::allocate()
 }
 
 /* ----------------------------------------------------------------------
-   pair_style sph/astro/gravity CUTOFF [G VALUE] [kernel NAME] [h VALUE]
+   pair_style sph/astro/gravity CUTOFF [G VALUE] [kernel NAME] [h VALUE] [zeta yes|no]
 ------------------------------------------------------------------------- */
 
 void PairSPHAstroGravity::settings(int narg, char **arg)
@@ -88,6 +105,7 @@ void PairSPHAstroGravity::settings(int narg, char **arg)
     error->all(FLERR, "pair_style sph/astro/gravity: cutoff {} must be > 0", arg[0]);
   G_given_ = kernel_given_ = false;
   hfixed_ = 0.0;
+  zeta_on_ = true;
   kernel_ = KernelType::CUBIC;
   int iarg = 1;
   while (iarg < narg) {
@@ -113,8 +131,11 @@ void PairSPHAstroGravity::settings(int narg, char **arg)
                    "pair_style sph/astro/gravity: softening length h = {} must be > 0 (point "
                    "masses need a softening length)",
                    arg[iarg + 1]);
+    } else if (key == "zeta") {
+      zeta_on_ = utils::logical(FLERR, arg[iarg + 1], false, lmp) != 0;
     } else
-      error->all(FLERR, "pair_style sph/astro/gravity: unknown keyword '{}'; allowed: G, kernel, h",
+      error->all(FLERR,
+                 "pair_style sph/astro/gravity: unknown keyword '{}'; allowed: G, kernel, h, zeta",
                  key);
     iarg += 2;
   }
@@ -188,6 +209,7 @@ void PairSPHAstroGravity::init_style()
 
   // the kernel of pair sph/astro, if present
   auto *sph = dynamic_cast<PairSPHAstro *>(force->pair_match("^sph/astro$", 0, 0));
+  sph_ = sph;
   if (sph) {
     if (kernel_given_ && sph->kernel_type() != kernel_)
       error->all(FLERR,
@@ -255,7 +277,9 @@ void PairSPHAstroGravity::init_style()
                      "out",
                      cut_global_, diag);
   }
-  neighbor->add_request(this);
+  // direct summation sums over all atoms itself (gather_all); the kspace split needs the
+  // short-range neighbour list
+  if (split_ != Split::NONE) neighbor->add_request(this);
 }
 
 double PairSPHAstroGravity::init_one(int i, int j)
@@ -265,7 +289,9 @@ double PairSPHAstroGravity::init_one(int i, int j)
                "pair_style sph/astro/gravity: pair_coeff for types {} {} is not set; gravity "
                "acts between all atoms (pair_coeff * *)",
                i, j);
-  return cut_global_;
+  // direct summation needs neither a neighbour list nor ghost atoms: no cutoff for LAMMPS, so
+  // that under hybrid/overlay the lists (and ghost shell) of pair sph/astro keep their size
+  return split_ == Split::NONE ? 0.0 : cut_global_;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -274,28 +300,198 @@ void PairSPHAstroGravity::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
   // ghosts need this step's softening lengths (fix sph/astro/h may have changed them)
-  if (have_state_) comm->forward_comm(this);
-  const bool cubic = kernel_ == KernelType::CUBIC;
-  if (split_ == Split::NONE) {
-    if (cubic)
-      eval<true, 0>(eflag, vflag);
-    else
-      eval<false, 0>(eflag, vflag);
-  } else if (split_ == Split::EWALD) {
-    if (cubic)
-      eval<true, 1>(eflag, vflag);
-    else
-      eval<false, 1>(eflag, vflag);
-  } else {
-    if (cubic)
-      eval<true, 2>(eflag, vflag);
-    else
-      eval<false, 2>(eflag, vflag);
+  if (have_state_) {
+    comm_stage_ = Stage::H;
+    comm->forward_comm(this);
   }
+  if (split_ == Split::NONE) gather_all();
+  zeta_active_ = zeta_terms_apply();
+  if (zeta_active_) compute_zeta();
+  const bool cubic = kernel_ == KernelType::CUBIC;
+#define SPH_ASTRO_GRAVITY_EVAL(SPLIT)          \
+  if (zeta_active_) {                          \
+    if (cubic)                                 \
+      eval<true, SPLIT, true>(eflag, vflag);   \
+    else                                       \
+      eval<false, SPLIT, true>(eflag, vflag);  \
+  } else {                                     \
+    if (cubic)                                 \
+      eval<true, SPLIT, false>(eflag, vflag);  \
+    else                                       \
+      eval<false, SPLIT, false>(eflag, vflag); \
+  }
+  if (split_ == Split::NONE) {
+    SPH_ASTRO_GRAVITY_EVAL(0)
+  } else if (split_ == Split::EWALD) {
+    SPH_ASTRO_GRAVITY_EVAL(1)
+  } else {
+    SPH_ASTRO_GRAVITY_EVAL(2)
+  }
+#undef SPH_ASTRO_GRAVITY_EVAL
   if (vflag_fdotr) virial_fdotr_compute();
 }
 
-template <bool CUBIC, int SPLIT> void PairSPHAstroGravity::eval(int eflag, int /*vflag*/)
+/* ----------------------------------------------------------------------
+   direct summation: every rank gathers position, mass and h of all atoms (5 values each) and
+   sums over all of them for its owned atoms, without ghosts or a neighbour list: in-rank pairs
+   once (Newton's third law), pairs with atoms of other ranks on both ranks (half the energy
+   each). Ghost atoms and neighbour lists then only serve the other pair styles.
+------------------------------------------------------------------------- */
+
+void PairSPHAstroGravity::gather_all()
+{
+  const int nlocal = atom->nlocal;
+  const int nprocs = comm->nprocs;
+  double **x = atom->x;
+  const int *type = atom->type;
+  const double *rmass = atom->rmass;
+  const double *mass = atom->mass;
+  const double *h = state_h();
+  std::vector<int> counts(nprocs), displs(nprocs);
+  MPI_Allgather(&nlocal, 1, MPI_INT, counts.data(), 1, MPI_INT, world);
+  int ntotal = 0;
+  for (int p = 0; p < nprocs; p++) {
+    displs[p] = ntotal;
+    ntotal += counts[p];
+  }
+  offset_ = displs[comm->me];
+  ntotal_ = ntotal;
+  std::vector<double> mine(5 * nlocal);
+  for (int i = 0; i < nlocal; i++) {
+    mine[5 * i + 0] = x[i][0];
+    mine[5 * i + 1] = x[i][1];
+    mine[5 * i + 2] = x[i][2];
+    mine[5 * i + 3] = rmass ? rmass[i] : mass[type[i]];
+    mine[5 * i + 4] = (h && h[i] > 0.0) ? h[i] : hfixed_;
+  }
+  all_.resize(5 * (size_t) ntotal);
+  std::vector<int> counts5(nprocs), displs5(nprocs);
+  for (int p = 0; p < nprocs; p++) {
+    counts5[p] = 5 * counts[p];
+    displs5[p] = 5 * displs[p];
+  }
+  MPI_Allgatherv(mine.data(), 5 * nlocal, MPI_DOUBLE, all_.data(), counts5.data(), displs5.data(),
+                 MPI_DOUBLE, world);
+  gather_counts_ = counts;
+  gather_displs_ = displs;
+}
+
+/* ----------------------------------------------------------------------
+   the zeta terms apply with pair sph/astro in grad-h mode (its extract_peratom("omega_valid")
+   is non-null), unless switched off; its Omega and rho must be of this step
+------------------------------------------------------------------------- */
+
+bool PairSPHAstroGravity::zeta_terms_apply()
+{
+  if (!zeta_on_ || !have_state_ || !sph_) return false;
+  int ncol;
+  if (!sph_->extract_peratom("omega_valid", ncol)) return false;
+  if (sph_->computed_step() != update->ntimestep || sph_->computed_nlocal() != atom->nlocal)
+    error->all(FLERR,
+               "pair_style sph/astro/gravity: the density and grad-h factors of pair sph/astro "
+               "are not of step {} (zeta terms); list sph/astro before sph/astro/gravity in "
+               "pair_style hybrid/overlay, or use zeta no",
+               update->ntimestep);
+  return true;
+}
+
+// zeta_i = dh_i/drho_i S_i, S_i = sum_{j != i} m_j dphi(r_ij, h_i)/dh_i, dh/drho = -h/(3 rho);
+// stored as zeta_i (zeta_) and zeta_i/Omega_i of all atoms (gathered, direct summation) or of
+// owned + ghost atoms (zeta_over_omega_, kspace split)
+void PairSPHAstroGravity::compute_zeta()
+{
+  if (atom->nmax > nmax_) {
+    nmax_ = atom->nmax;
+    memory->destroy(zeta_);
+    memory->create(zeta_, nmax_, "pair:sph/astro/gravity:zeta");
+  }
+  double **x = atom->x;
+  const int *type = atom->type;
+  const double *rmass = atom->rmass;
+  const double *mass = atom->mass;
+  const double *h = state_h();
+  const double *rho = atom->dvector[state_.rho];
+  int ncol;
+  const double *omega = static_cast<const double *>(sph_->extract_peratom("omega_valid", ncol));
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  const int newton_pair = force->newton_pair;
+  const double R = kernel_radius(kernel_);
+  const double hfix = hfixed_;
+  const KernelType kernel = kernel_;
+  for (int i = 0; i < nall; i++) zeta_[i] = 0.0;
+
+  if (split_ == Split::NONE) {
+    const double *all = all_.data();
+    const int n = ntotal_;
+    for (int i = 0; i < nlocal; i++) {
+      const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
+      const double hi = h[i] > 0.0 ? h[i] : hfix;
+      const double Rhsq = R * R * hi * hi;
+      const int gi = offset_ + i;
+      double sum = 0.0;
+      for (int gj = 0; gj < n; gj++) {
+        const double *aj = all + 5 * gj;
+        const double dx = xi - aj[0], dy = yi - aj[1], dz = zi - aj[2];
+        const double rsq = dx * dx + dy * dy + dz * dz;
+        if (rsq >= Rhsq || gj == gi) continue;
+        sum += aj[3] * softened_dphidh(kernel, std::sqrt(rsq), hi);
+      }
+      zeta_[i] = sum;
+    }
+  } else {
+    const int inum = list->inum;
+    const int *ilist = list->ilist;
+    const int *numneigh = list->numneigh;
+    int **firstneigh = list->firstneigh;
+    for (int ii = 0; ii < inum; ii++) {
+      const int i = ilist[ii];
+      const double hi = h[i] > 0.0 ? h[i] : hfix;
+      const double mi = rmass ? rmass[i] : mass[type[i]];
+      const int *jlist = firstneigh[i];
+      const int jnum = numneigh[i];
+      for (int jj = 0; jj < jnum; jj++) {
+        const int j = jlist[jj] & NEIGHMASK;
+        const double hj = h[j] > 0.0 ? h[j] : hfix;
+        const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
+        const double rsq = dx * dx + dy * dy + dz * dz;
+        const double Rh = R * MAX(hi, hj);
+        if (rsq >= Rh * Rh) continue;
+        const double r = std::sqrt(rsq);
+        zeta_[i] += (rmass ? rmass[j] : mass[type[j]]) * softened_dphidh(kernel, r, hi);
+        if (newton_pair || j < nlocal) zeta_[j] += mi * softened_dphidh(kernel, r, hj);
+      }
+    }
+    if (newton_pair) {
+      comm_stage_ = Stage::ZETA;
+      comm->reverse_comm(this);
+    }
+  }
+  // 0 for h held at the cap (it does not follow rho) and atoms without SPH smoothing length
+  for (int i = 0; i < nlocal; i++) {
+    if (!(h[i] > 0.0) || h[i] >= sph_->h_limit(i) || !(rho[i] > 0.0))
+      zeta_[i] = 0.0;
+    else
+      zeta_[i] *= -h[i] / (3.0 * rho[i]);
+  }
+  // zeta/Omega of the partners
+  if (split_ == Split::NONE) {
+    std::vector<double> mine(nlocal);
+    for (int i = 0; i < nlocal; i++) mine[i] = zeta_[i] / omega[i];
+    zo_all_.resize(ntotal_);
+    MPI_Allgatherv(mine.data(), nlocal, MPI_DOUBLE, zo_all_.data(), gather_counts_.data(),
+                   gather_displs_.data(), MPI_DOUBLE, world);
+  } else {
+    comm_stage_ = Stage::ZETA;
+    comm->forward_comm(this);
+  }
+}
+
+/* ----------------------------------------------------------------------
+   forces and energy; one pair term for both drivers (gathered atoms or neighbour list)
+------------------------------------------------------------------------- */
+
+template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int eflag, int /*vflag*/)
 {
   double **x = atom->x;
   double **f = atom->f;
@@ -313,6 +509,7 @@ template <bool CUBIC, int SPLIT> void PairSPHAstroGravity::eval(int eflag, int /
   const double g = g_ewald_;
   const double a = cut_global_;    // MSM split radius
   const KSpace *kspace = force->kspace;
+  const KernelType kernel = kernel_;
 
   auto kernel_eval = [&](double q, double &fp, double &ff) {
     if (CUBIC)
@@ -321,22 +518,119 @@ template <bool CUBIC, int SPLIT> void PairSPHAstroGravity::eval(int eflag, int /
       soft.eval(q, fp, ff);
   };
 
+  // potential e (per G m_i m_j) of the part this pair style supplies and D = de/dr plus the zeta
+  // terms, so that F_i = -G m_i m_j D r_ij/r; zoi, zoj: zeta/Omega of the two atoms
+  auto pair_term = [&](double rsq, double hi, double hj, double zoi, double zoj, double &e,
+                       double &D) {
+    const double r = std::sqrt(rsq);
+    // softened - Newtonian: s = phi_ij + 1/r, ds = dphi_ij/dr - 1/r^2, zero beyond both
+    // supports (computed as the difference only inside, so no cancellation outside)
+    double s = 0.0, ds = 0.0, dzeta = 0.0;
+    if (r < R * MAX(hi, hj)) {
+      const double hiinv = 1.0 / hi;
+      double pi, fi;
+      kernel_eval(r * hiinv, pi, fi);
+      double phi = pi * hiinv, dphi = fi * hiinv * hiinv;
+      if (hj != hi) {
+        const double hjinv = 1.0 / hj;
+        double pj, fj;
+        kernel_eval(r * hjinv, pj, fj);
+        phi = 0.5 * (phi + pj * hjinv);
+        dphi = 0.5 * (dphi + fj * hjinv * hjinv);
+      }
+      if (r == 0.0) {    // coincident atoms: finite potential, no force
+        e = phi;
+        if (SPLIT == 1) e += 2.0 * g / MY_PIS;
+        if (SPLIT == 2) e += kspace->gamma(0.0) / a;
+        D = 0.0;
+        return;
+      }
+      s = phi + 1.0 / r;
+      ds = dphi - 1.0 / rsq;
+      // zeta terms: 1/2 [zeta_i/Omega_i dW/dr(h_i) + zeta_j/Omega_j dW/dr(h_j)]
+      if (ZETA)
+        dzeta = 0.5 * (zoi * kernel_dwdr3(kernel, r, hi) + zoj * kernel_dwdr3(kernel, r, hj));
+    }
+    double de;
+    if (SPLIT == 0) {
+      e = s - 1.0 / r;
+      de = ds + 1.0 / rsq;
+    } else if (SPLIT == 1) {
+      // Newtonian minus the long-range erf(g r)/r of the kspace: -erfc(g r)/r
+      const double erfc_r = std::erfc(g * r) / r;
+      e = s - erfc_r;
+      de = ds + erfc_r / r + 2.0 * g / MY_PIS * std::exp(-g * g * rsq) / r;
+    } else {
+      // Newtonian minus the long-range gamma(r/a)/a of MSM: -(1 - rho gamma(rho))/r
+      const double rho = r / a;
+      e = s - (1.0 - rho * kspace->gamma(rho)) / r;
+      de = ds + (1.0 + rho * rho * kspace->dgamma(rho)) / rsq;
+    }
+    D = (de + dzeta) / r;
+  };
+
+  if (SPLIT == 0) {
+    // direct summation over the gathered atoms
+    const double *all = all_.data();
+    const double *zo_all = ZETA ? zo_all_.data() : nullptr;
+    const int n = ntotal_;
+    const int first = offset_, last = offset_ + nlocal;
+    for (int i = 0; i < nlocal; i++) {
+      const int gi = first + i;
+      const double *ai = all + 5 * gi;
+      const double xi = ai[0], yi = ai[1], zi = ai[2], mi = ai[3], hi = ai[4];
+      const double zoi = ZETA ? zo_all[gi] : 0.0;
+      double fxi = 0.0, fyi = 0.0, fzi = 0.0;
+      for (int gj = 0; gj < n; gj++) {
+        const bool mine = gj >= first && gj < last;
+        if (mine && gj <= gi) continue;    // in-rank pairs once
+        const double *aj = all + 5 * gj;
+        const double delx = xi - aj[0], dely = yi - aj[1], delz = zi - aj[2];
+        const double rsq = delx * delx + dely * dely + delz * delz;
+        if (rsq >= cutsq) continue;
+        double e, D;
+        pair_term(rsq, hi, aj[4], zoi, ZETA ? zo_all[gj] : 0.0, e, D);
+        const double mm = G * mi * aj[3];
+        const double fpair = -mm * D;
+        fxi += delx * fpair;
+        fyi += dely * fpair;
+        fzi += delz * fpair;
+        if (mine) {
+          const int j = gj - first;
+          f[j][0] -= delx * fpair;
+          f[j][1] -= dely * fpair;
+          f[j][2] -= delz * fpair;
+          if (evflag) ev_tally(i, j, nlocal, 1, eflag ? mm * e : 0.0, 0.0, fpair, delx, dely, delz);
+        } else if (evflag)    // the other rank tallies the other half
+          ev_tally(i, nlocal, nlocal, 0, eflag ? mm * e : 0.0, 0.0, fpair, delx, dely, delz);
+      }
+      f[i][0] += fxi;
+      f[i][1] += fyi;
+      f[i][2] += fzi;
+    }
+    return;
+  }
+
+  // short-range part over the neighbour list; the softening support must be inside the cutoff
+  const double *zeta = zeta_;
+  int ncol;
+  const double *omega =
+      ZETA ? static_cast<const double *>(sph_->extract_peratom("omega_valid", ncol)) : nullptr;
   const int inum = list->inum;
   const int *ilist = list->ilist;
   const int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
-
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
     const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
     const double mi = rmass ? rmass[i] : mass[type[i]];
     const double hi = (hstate && hstate[i] > 0.0) ? hstate[i] : hfix;
-    if (SPLIT != 0 && R * hi > cut_global_)
+    if (R * hi > cut_global_)
       error->one(FLERR,
                  "pair_style sph/astro/gravity: atom {} has softening support {} x h = {} beyond "
                  "the cutoff {} on step {}; the short-range part must cover it (larger cutoff)",
                  atom->tag[i], R, R * hi, cut_global_, update->ntimestep);
-    const double hiinv = 1.0 / hi;
+    const double zoi = ZETA ? zeta[i] / omega[i] : 0.0;
     double fxi = 0.0, fyi = 0.0, fzi = 0.0;
     const int *jlist = firstneigh[i];
     const int jnum = numneigh[i];
@@ -347,52 +641,10 @@ template <bool CUBIC, int SPLIT> void PairSPHAstroGravity::eval(int eflag, int /
       if (rsq >= cutsq) continue;
       const double mj = rmass ? rmass[j] : mass[type[j]];
       const double hj = (hstate && hstate[j] > 0.0) ? hstate[j] : hfix;
-      const double r = std::sqrt(rsq);
-
-      // softened - Newtonian: s = phi_ij + 1/r, ds = dphi_ij/dr - 1/r^2, zero beyond both
-      // supports (computed as the difference only inside, so no cancellation outside)
-      double s = 0.0, ds = 0.0;
-      const bool inside = r < R * MAX(hi, hj);
-      if (inside) {
-        double pi, fi;
-        kernel_eval(r * hiinv, pi, fi);
-        double phi = pi * hiinv, dphi = fi * hiinv * hiinv;
-        if (hj != hi) {
-          const double hjinv = 1.0 / hj;
-          double pj, fj;
-          kernel_eval(r * hjinv, pj, fj);
-          phi = 0.5 * (phi + pj * hjinv);
-          dphi = 0.5 * (dphi + fj * hjinv * hjinv);
-        }
-        if (r == 0.0) {    // coincident atoms: finite potential, no force
-          double e0 = phi;
-          if (SPLIT == 1) e0 += 2.0 * g / MY_PIS;
-          if (SPLIT == 2) e0 += kspace->gamma(0.0) / a;
-          if (eflag) ev_tally(i, j, nlocal, newton_pair, G * mi * mj * e0, 0.0, 0.0, 0, 0, 0);
-          continue;
-        }
-        s = phi + 1.0 / r;
-        ds = dphi - 1.0 / rsq;
-      }
-
-      // potential e (per G m_i m_j) and de/dr of the part this pair style supplies
-      double e, de;
-      if (SPLIT == 0) {
-        e = s - 1.0 / r;
-        de = ds + 1.0 / rsq;
-      } else if (SPLIT == 1) {
-        // Newtonian minus the long-range erf(g r)/r of the kspace: -erfc(g r)/r
-        const double erfc_r = std::erfc(g * r) / r;
-        e = s - erfc_r;
-        de = ds + erfc_r / r + 2.0 * g / MY_PIS * std::exp(-g * g * rsq) / r;
-      } else {
-        // Newtonian minus the long-range gamma(r/a)/a of MSM: -(1 - rho gamma(rho))/r
-        const double rho = r / a;
-        e = s - (1.0 - rho * kspace->gamma(rho)) / r;
-        de = ds + (1.0 + rho * rho * kspace->dgamma(rho)) / rsq;
-      }
-      // F_i = -dU/dr r_ij/r with U = G m_i m_j e
-      const double fpair = -G * mi * mj * de / r;
+      double e, D;
+      pair_term(rsq, hi, hj, zoi, ZETA ? zeta[j] / omega[j] : 0.0, e, D);
+      const double mm = G * mi * mj;
+      const double fpair = -mm * D;
       fxi += delx * fpair;
       fyi += dely * fpair;
       fzi += delz * fpair;
@@ -402,8 +654,7 @@ template <bool CUBIC, int SPLIT> void PairSPHAstroGravity::eval(int eflag, int /
         f[j][2] -= delz * fpair;
       }
       if (evflag)
-        ev_tally(i, j, nlocal, newton_pair, eflag ? G * mi * mj * e : 0.0, 0.0, fpair, delx, dely,
-                 delz);
+        ev_tally(i, j, nlocal, newton_pair, eflag ? mm * e : 0.0, 0.0, fpair, delx, dely, delz);
     }
     f[i][0] += fxi;
     f[i][1] += fyi;
@@ -416,15 +667,40 @@ template <bool CUBIC, int SPLIT> void PairSPHAstroGravity::eval(int eflag, int /
 int PairSPHAstroGravity::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/,
                                            int * /*pbc*/)
 {
-  const double *h = state_h();
-  for (int k = 0; k < n; k++) buf[k] = h[list[k]];
+  const double *v = comm_stage_ == Stage::ZETA ? zeta_ : state_h();
+  for (int k = 0; k < n; k++) buf[k] = v[list[k]];
   return n;
 }
 
 void PairSPHAstroGravity::unpack_forward_comm(int n, int first, double *buf)
 {
-  double *h = state_h();
-  for (int k = 0; k < n; k++) h[first + k] = buf[k];
+  double *v = comm_stage_ == Stage::ZETA ? zeta_ : state_h();
+  for (int k = 0; k < n; k++) v[first + k] = buf[k];
+}
+
+// reverse communication: the ghosts' partial sums of zeta
+int PairSPHAstroGravity::pack_reverse_comm(int n, int first, double *buf)
+{
+  for (int k = 0; k < n; k++) buf[k] = zeta_[first + k];
+  return n;
+}
+
+void PairSPHAstroGravity::unpack_reverse_comm(int n, int *list, double *buf)
+{
+  for (int k = 0; k < n; k++) zeta_[list[k]] += buf[k];
+}
+
+// zeta: zeta_i of owned and ghost atoms, while the zeta terms are active (else null)
+void *PairSPHAstroGravity::extract_peratom(const char *name, int &ncol)
+{
+  ncol = 0;
+  if (strcmp(name, "zeta") == 0) return zeta_active_ ? (void *) zeta_ : nullptr;
+  return nullptr;
+}
+
+double PairSPHAstroGravity::memory_usage()
+{
+  return nmax_ * sizeof(double) + Pair::memory_usage();
 }
 
 /* ----------------------------------------------------------------------
@@ -475,28 +751,29 @@ void PairSPHAstroGravity::read_restart(FILE *fp)
 void PairSPHAstroGravity::write_restart_settings(FILE *fp)
 {
   const int kernel = static_cast<int>(kernel_);
-  const int flags[2] = {G_given_ ? 1 : 0, kernel_given_ ? 1 : 0};
+  const int flags[3] = {G_given_ ? 1 : 0, kernel_given_ ? 1 : 0, zeta_on_ ? 1 : 0};
   fwrite(&cut_global_, sizeof(double), 1, fp);
   fwrite(&G_, sizeof(double), 1, fp);
   fwrite(&hfixed_, sizeof(double), 1, fp);
   fwrite(&kernel, sizeof(int), 1, fp);
-  fwrite(flags, sizeof(int), 2, fp);
+  fwrite(flags, sizeof(int), 3, fp);
 }
 
 void PairSPHAstroGravity::read_restart_settings(FILE *fp)
 {
   double d[3];
-  int ints[3];
+  int ints[4];
   if (comm->me == 0) {
     utils::sfread(FLERR, d, sizeof(double), 3, fp, nullptr, error);
-    utils::sfread(FLERR, ints, sizeof(int), 3, fp, nullptr, error);
+    utils::sfread(FLERR, ints, sizeof(int), 4, fp, nullptr, error);
   }
   MPI_Bcast(d, 3, MPI_DOUBLE, 0, world);
-  MPI_Bcast(ints, 3, MPI_INT, 0, world);
+  MPI_Bcast(ints, 4, MPI_INT, 0, world);
   cut_global_ = d[0];
   G_ = d[1];
   hfixed_ = d[2];
   kernel_ = static_cast<KernelType>(ints[0]);
   G_given_ = ints[1] != 0;
   kernel_given_ = ints[2] != 0;
+  zeta_on_ = ints[3] != 0;
 }

@@ -15,6 +15,8 @@ PairStyle(sph/astro/gravity,PairSPHAstroGravity);
 #include "sph_astro_kernel.h"
 #include "sph_astro_state.h"
 
+#include <vector>
+
 namespace LAMMPS_NS {
 
 class PairSPHAstroGravity : public Pair {
@@ -33,7 +35,11 @@ class PairSPHAstroGravity : public Pair {
   void read_restart_settings(FILE *) override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
+  int pack_reverse_comm(int, int, double *) override;
+  void unpack_reverse_comm(int, int *, double *) override;
   void *extract(const char *, int &) override;
+  void *extract_peratom(const char *, int &) override;
+  double memory_usage() override;
 
   // for compute sph/astro/gravity/direct (valid after init_style)
   double gravity_constant() const { return G_; }
@@ -41,6 +47,11 @@ class PairSPHAstroGravity : public Pair {
   // softening length of local or ghost atom i: d_h of the SPH state if > 0, else the fixed h
   double softening_length(int i) const;
   double cutoff() const { return cut_global_; }
+  // direct summation (no kspace) loops over all pairs without a neighbour list, so that
+  // neighbour collections sized by h (fix sph/astro/h collections) can serve pair sph/astro
+  bool uses_neighbor_list() const { return split_ != Split::NONE; }
+  // the adaptive-softening terms were part of the latest force evaluation
+  bool zeta_active() const { return zeta_active_; }
 
   // long-range split of the active gravity kspace: none (direct summation within the
   // cutoff), Ewald/PPPM (erfc split) or MSM (gamma split)
@@ -59,10 +70,28 @@ class PairSPHAstroGravity : public Pair {
   Split split_ = Split::NONE;
   double g_ewald_ = 0.0;
 
+  // adaptive-softening ("zeta") terms of Price & Monaghan 2007 with variable h (grad-h mode
+  // of pair sph/astro): keyword zeta yes|no; zeta_ holds zeta_i (owned + ghost)
+  bool zeta_on_ = true;
+  bool zeta_active_ = false;
+  class PairSPHAstro *sph_ = nullptr;
+  double *zeta_ = nullptr;
+  int nmax_ = 0;
+  enum class Stage { H, ZETA };
+  Stage comm_stage_ = Stage::H;
+
   void allocate();
   void resolve_gravity_constant();
   double *state_h() const;
-  template <bool CUBIC, int SPLIT> void eval(int eflag, int vflag);
+  bool zeta_terms_apply();
+  void compute_zeta();
+  // direct summation: x, y, z, m, h of all atoms of all ranks (gather_all), zeta/Omega of all
+  // atoms; this rank's atoms start at offset_
+  std::vector<double> all_, zo_all_;
+  std::vector<int> gather_counts_, gather_displs_;
+  int offset_ = 0, ntotal_ = 0;
+  void gather_all();
+  template <bool CUBIC, int SPLIT, bool ZETA> void eval(int eflag, int vflag);
 };
 
 }    // namespace LAMMPS_NS

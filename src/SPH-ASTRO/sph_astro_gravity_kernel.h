@@ -127,6 +127,54 @@ inline void softened(KernelType type, double r, double h, double &phi, double &d
   dphidr = ff * hinv * hinv;
 }
 
+// dphi/dh of one particle at fixed r, for the adaptive-softening ("zeta") terms of
+// Price & Monaghan 2007 (sec. 3). From phi = fpot(q)/h with q = r/h and dfpot/dq = fforce:
+//   dphi/dh = -fpot(q)/h^2 + fforce(q) (-r/h^2)/h = -[fpot(q) + q fforce(q)] / h^2,
+// zero outside the support (fpot = -1/q, fforce = 1/q^2 there) and -fpot(0)/h^2 > 0 at r = 0
+// (1.4/h^2 for M4): a wider kernel makes the potential of the particle shallower.
+inline double softened_dphidh(KernelType type, double r, double h)
+{
+  const double hinv = 1.0 / h;
+  const double q = r * hinv;
+  double fp, ff;
+  if (type == KernelType::CUBIC) {
+    if (q >= SoftenedCubic::radius) return 0.0;    // exactly zero outside
+    SoftenedCubic::eval(q, fp, ff);
+  } else {
+    const SoftenedKernel &soft = softened_kernel(type);
+    if (q >= soft.radius()) return 0.0;
+    soft.eval(q, fp, ff);
+  }
+  return -(fp + q * ff) * hinv * hinv;
+}
+
+// radial derivative of the 3D kernel, dW/dr = sigma_3 w'(q) / h^4 (sph_astro_kernel.h), for
+// the zeta terms (run-time kernel choice); the Gaussian has no softened potential here
+inline double kernel_dwdr3(KernelType type, double r, double h)
+{
+  const double hinv = 1.0 / h;
+  const double q = r * hinv;
+  const double h4inv = hinv * hinv * hinv * hinv;
+  switch (type) {
+    case KernelType::CUBIC:
+      return q < KernelCubic::radius ? KernelCubic::sigma(3) * KernelCubic::dw(q) * h4inv : 0.0;
+    case KernelType::QUINTIC:
+      return q < KernelQuintic::radius ? KernelQuintic::sigma(3) * KernelQuintic::dw(q) * h4inv
+                                       : 0.0;
+    case KernelType::WENDLAND_C2:
+      return q < KernelWendlandC2::radius
+          ? KernelWendlandC2::sigma(3) * KernelWendlandC2::dwd<3>(q) * h4inv
+          : 0.0;
+    case KernelType::WENDLAND_C4:
+      return q < KernelWendlandC4::radius
+          ? KernelWendlandC4::sigma(3) * KernelWendlandC4::dwd<3>(q) * h4inv
+          : 0.0;
+    case KernelType::GAUSSIAN:
+      break;
+  }
+  return 0.0;
+}
+
 // pair form, symmetric in i and j (Price & Monaghan 2007): the mean of the softened potential
 // and force for h_i and h_j, phi_ij = [phi(r,h_i) + phi(r,h_j)]/2, likewise dphi/dr
 inline void softened_pair(KernelType type, double r, double hi, double hj, double &phi,

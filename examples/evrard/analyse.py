@@ -1,0 +1,127 @@
+#!/usr/bin/env python3
+"""Evrard collapse (examples/evrard/in.evrard): energies from the LAMMPS log.
+
+Reads the thermo rows of every run in the log (sph/astro/run repeats runs after neighbour-list
+rebuilds; a row repeated at a run boundary is kept once), columns
+  Step Time Dt c_sum[8] c_sum[9] c_sum[10] c_sum[11] c_sum[12] ...
+     = kinetic K, thermal U, potential W, total E, (E - E0)/|E0|,
+and prints one line per figure:
+  - the largest relative total-energy error over the run (bar: 1 %),
+  - the time of maximum compression (minimum of W) and K, U, W, E there,
+  - the kinetic-energy maximum,
+  - K, U, W, E at t = 0.8 and t = 3 (linear interpolation between thermo rows),
+  - wall time and steps.
+The initial state is compared with its continuum values: W0 = -2/3 G M^2/R for rho ~ 1/r,
+U0 = M u0 = 0.05, K0 = 0. Published curves (Evrard 1988, Fig. of the energies; Springel 2005,
+GADGET-2) are not reproduced as numbers here: see README.md.
+
+Usage: analyse.py LOG [--png FILE] [--assert maxerr=X]
+"""
+import argparse
+import sys
+
+
+def read_log(path):
+    rows = {}
+    wall = None
+    with open(path) as fh:
+        header = None
+        for line in fh:
+            words = line.split()
+            if words[:2] == ["Step", "Time"]:
+                header = words
+                continue
+            if header and words and words[0] == "Loop":
+                header = None
+                continue
+            if line.startswith("Total wall time:"):
+                h, m, s = words[-1].split(":")
+                wall = 3600 * int(h) + 60 * int(m) + int(s)
+            if header and len(words) == len(header):
+                try:
+                    vals = [float(w) for w in words]
+                except ValueError:
+                    continue
+                rows[int(vals[0])] = dict(zip(header, vals))
+    steps = sorted(rows)
+    if not steps:
+        sys.exit(f"analyse.py: no thermo rows in {path}")
+    return [rows[s] for s in steps], wall
+
+
+def at_time(rows, t, key):
+    for a, b in zip(rows, rows[1:]):
+        if a["Time"] <= t <= b["Time"]:
+            w = (t - a["Time"]) / (b["Time"] - a["Time"]) if b["Time"] > a["Time"] else 0.0
+            return a[key] + w * (b[key] - a[key])
+    return None
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("log")
+    p.add_argument("--png", help="write the energy curves to this PNG")
+    p.add_argument("--assert", dest="bounds", default="",
+                   help="comma-separated bounds, e.g. maxerr=2e-3: exit 1 when exceeded")
+    args = p.parse_args()
+    rows, wall = read_log(args.log)
+    K, U, W, E, ERR = "c_sum[8]", "c_sum[9]", "c_sum[10]", "c_sum[11]", "c_sum[12]"
+    r0 = rows[0]
+    maxerr = max(abs(r[ERR]) for r in rows)
+    imin = min(range(len(rows)), key=lambda i: rows[i][W])
+    kmax = max(rows, key=lambda r: r[K])
+    umax = max(rows, key=lambda r: r[U])
+    tend = rows[-1]["Time"]
+    print(f"Evrard: {len(rows)} thermo rows, t = 0 .. {tend:.4g}, {int(rows[-1]['Step'])} steps, "
+          f"wall {wall} s")
+    print(f"initial: K {r0[K]:.4f} U {r0[U]:.4f} W {r0[W]:.4f} (continuum rho ~ 1/r: -2/3 = "
+          f"{-2.0 / 3.0:.4f}) E {r0[E]:.4f}")
+    print(f"max relative total-energy error: {maxerr:.3e} (bar 1e-2: "
+          f"{'ok' if maxerr < 1e-2 else 'FAILED'}); at the end {rows[-1][ERR]:.3e}")
+    rm = rows[imin]
+    print(f"maximum compression (min W): t = {rm['Time']:.3f}: K {rm[K]:.4f} U {rm[U]:.4f} "
+          f"W {rm[W]:.4f} E {rm[E]:.4f}")
+    print(f"kinetic maximum: t = {kmax['Time']:.3f}, K = {kmax[K]:.4f}; thermal maximum: "
+          f"t = {umax['Time']:.3f}, U = {umax[U]:.4f}")
+    for t in (0.8, 3.0):
+        if t > tend + 1e-9:
+            print(f"t = {t}: not reached")
+            continue
+        vals = [at_time(rows, min(t, tend), k) for k in (K, U, W, E)]
+        print(f"t = {t}: K {vals[0]:.4f} U {vals[1]:.4f} W {vals[2]:.4f} E {vals[3]:.4f}")
+
+    if args.png:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        t = [r["Time"] for r in rows]
+        fig, (ax, ax2) = plt.subplots(2, 1, figsize=(6.5, 6.5), sharex=True,
+                                      gridspec_kw={"height_ratios": [3, 1]})
+        for key, label, style in ((K, "kinetic K", "-"), (U, "thermal U", "--"),
+                                  (W, "potential W", "-."), (E, "total E", ":")):
+            ax.plot(t, [r[key] for r in rows], style, label=label)
+        ax.axvline(rm["Time"], color="grey", lw=0.5)
+        ax.set_ylabel("energy (G M^2 / R)")
+        ax.legend(loc="lower left")
+        ax.set_title("Evrard collapse")
+        ax2.plot(t, [r[ERR] for r in rows])
+        ax2.set_ylabel("(E - E0)/|E0|")
+        ax2.set_xlabel("t")
+        fig.tight_layout()
+        fig.savefig(args.png, dpi=110)
+        print(f"wrote {args.png}")
+
+    failed = False
+    for item in filter(None, args.bounds.split(",")):
+        name, value = item.split("=")
+        measured = {"maxerr": maxerr}[name]
+        if not measured <= float(value):
+            print(f"FAILED: {name} = {measured:.4g} > {value}")
+            failed = True
+        else:
+            print(f"ok: {name} = {measured:.4g} <= {value}")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
