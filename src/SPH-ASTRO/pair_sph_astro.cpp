@@ -426,9 +426,6 @@ void PairSPHAstro::init_style()
     error->all(FLERR,
                "pair_style sph/astro density continuity: the per-atom state fix {} is missing",
                CONTINUITY_FIX_ID);
-  // without a summation pass the neighbour counts cost a pass of their own: only for output
-  count_neighbours_ =
-      density_continuity_ && !modify->get_compute_by_style("^sph/astro/atom$").empty();
 
   // every particle needs a positive mass and smoothing length; the list cutoffs are set
   // by the largest h of each type
@@ -652,7 +649,17 @@ template <class KERNEL, int DIM, bool KM> void PairSPHAstro::density_sum()
 }
 
 // density continuity without a summation: the neighbour counts of compute sph/astro/atom
-// (partners inside R h_ij, or R max(h_i, h_j) with the averaged kernel), a pass only for them
+// (partners inside R h_ij, or R max(h_i, h_j) with the averaged kernel), a pass only for them,
+// run when they are asked for (x, h and the lists are still those of the force evaluation)
+const double *PairSPHAstro::neighbour_counts()
+{
+  if (counts_step_ != computed_step_ && computed_step_ >= 0) {
+    count_neighbours();
+    counts_step_ = computed_step_;
+  }
+  return nneigh_;
+}
+
 void PairSPHAstro::count_neighbours()
 {
   double **x = atom->x;
@@ -828,6 +835,7 @@ template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
     comm_stage_ = Stage::SMOOTHING_LENGTH;
     comm->forward_comm(this, 1);
   }
+  counts_step_ = update->ntimestep;    // a density pass counts the neighbours
   if (form == GRADH)
     density_gradh<KERNEL, DIM>();
   else if (!density_continuity_ || integrator_->density_needs_init()) {
@@ -841,8 +849,8 @@ template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
       for (int i = 0; i < nlocal; i++) rhoest[i] = rho[i];
       integrator_->density_initialised();
     }
-  } else if (count_neighbours_)
-    count_neighbours();
+  } else
+    counts_step_ = -1;    // counted only if asked for (neighbour_counts)
   equation_of_state();
   if (curl_on_) {
     if (form == GRADH)
@@ -1280,7 +1288,9 @@ void *PairSPHAstro::extract_peratom(const char *name, int &ncol)
   if (strcmp(name, "pressure") == 0) return (void *) pressure_;
   if (strcmp(name, "soundspeed") == 0) return (void *) soundspeed_;
   if (strcmp(name, "divv") == 0) return (void *) divv_;
-  if (strcmp(name, "nneigh") == 0) return (void *) nneigh_;
+  // current unless density continuity skipped the summation (see neighbour_counts())
+  if (strcmp(name, "nneigh") == 0)
+    return counts_step_ == computed_step_ ? (void *) nneigh_ : nullptr;
   if (strcmp(name, "omega") == 0) return (void *) omega_;
   if (strcmp(name, "curlv") == 0) return (void *) (curl_on_ ? curlv_ : nullptr);
   if (strcmp(name, "vsigmax") == 0) return (void *) (signal_viscosity() ? vsigmax_ : nullptr);

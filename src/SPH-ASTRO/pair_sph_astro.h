@@ -79,6 +79,10 @@ class PairSPHAstro : public Pair {
   bool pressure_geometric() const { return pressure_geometric_; }
   // the density of the latest (or current) force evaluation, owned and ghost atoms
   double *eval_density() const;
+  // neighbours inside the kernel support of the latest force evaluation (owned atoms). With
+  // density continuity there is no summation pass to count them: the first call after a force
+  // evaluation counts in a pass of its own (collective: call on all ranks, as computes are)
+  const double *neighbour_counts();
 
  protected:
   SPHAstro::KernelType kernel_ = SPHAstro::KernelType::CUBIC;
@@ -101,7 +105,7 @@ class PairSPHAstro : public Pair {
   bool symmetrise_kernel_ = false;
   bool pressure_geometric_ = false;
   SPHAstro::ContinuityIndex continuity_index_;
-  bool count_neighbours_ = false;    // continuity: neighbour counts for compute sph/astro/atom
+  bigint counts_step_ = -1;    // step whose force evaluation nneigh_ was counted in
   double *pgeo_ = nullptr;           // pressure geometric: sqrt(P)/rho (owned + ghost)
 
   // physical heat conduction (pair_sph_astro_conduction.cpp): a separate pass after the
