@@ -30,8 +30,9 @@ class PairOption : public ::testing::TestWithParam<std::string> {};
 // averaged kernel differ (with equal h they coincide)
 static void vary_h(const std::unique_ptr<LAMMPS> &lmp)
 {
-  commands(lmp, {"variable hvary atom " + num(1.2 * std::cbrt(0.25)) + "*(1.0+0.25*random(-1,1,5077))",
-                 "set group all d_h v_hvary"});
+  commands(lmp,
+           {"variable hvary atom " + num(1.2 * std::cbrt(0.25)) + "*(1.0+0.25*random(-1,1,5077))",
+            "set group all d_h v_hvary"});
 }
 
 // ---------------------------------------------------------------- uniform motion
@@ -72,8 +73,9 @@ TEST(DensityContinuity, StartsFromOneSummationAndThenIntegrates)
   for (const std::string density : {"summation", "continuity"}) {
     auto lmp = open_lammps();
     gas(lmp, "box", 3, GAS + " density " + density, "sph/astro dt fixed");
-    commands(lmp, {"set group all d_rho 123.0", "velocity all create 0.5 4928459 dist gaussian",
-                   "run 0"});
+    commands(
+        lmp,
+        {"set group all d_rho 123.0", "velocity all create 0.5 4928459 dist gaussian", "run 0"});
     const auto rho_start = per_atom(lmp, "rho");
     for (const auto &[id, r] : rho_start) EXPECT_LT(std::fabs(r - 1.0), 0.1) << "atom " << id;
     if (density == "continuity") {
@@ -136,9 +138,9 @@ static double energy_error(double dt, const std::string &options, const std::str
   vary_h(lmp);
   if (!hfix.empty()) commands(lmp, {hfix});
   const int nsteps = static_cast<int>(std::lround(0.4 / dt));
-  commands(lmp,
-           {"timestep " + num(dt), "thermo " + std::to_string(nsteps),
-            "run " + std::to_string(nsteps)});
+  commands(
+      lmp,
+      {"timestep " + num(dt), "thermo " + std::to_string(nsteps), "run " + std::to_string(nsteps)});
   return std::fabs(global_vector(lmp, "sum", 12)[DEREL]);
 }
 
@@ -146,7 +148,8 @@ TEST_P(PairOption, EnergyErrorIsSecondOrderInTimestep)
 {
   // the pair terms conserve energy exactly; what remains is the leapfrog's error ~ dt^2
   for (const std::string hfix : {"", "fix hvar all sph/astro/h dhdt margin 2.0"}) {
-    const double e1 = energy_error(0.02, GetParam(), hfix), e2 = energy_error(0.01, GetParam(), hfix),
+    const double e1 = energy_error(0.02, GetParam(), hfix),
+                 e2 = energy_error(0.01, GetParam(), hfix),
                  e3 = energy_error(0.005, GetParam(), hfix);
     printf("%s%s: energy error dt 0.02 %.3e, 0.01 %.3e, 0.005 %.3e (ratios %.2f %.2f)\n",
            GetParam().c_str(), hfix.empty() ? "" : ", dhdt", e1, e2, e3, e1 / e2, e2 / e3);
@@ -169,8 +172,9 @@ TEST_P(PairOption, RestartContinuesBitForBit)
     auto lmp = open_lammps();
     gas(lmp, "box", 3, GAS + " " + GetParam(), "sph/astro courant 0.3");
     vary_h(lmp);
-    commands(lmp, {"fix hvar all sph/astro/h dhdt", "velocity all create 0.5 4928459",
-                   "run 20", "write_restart " + restart, "run 20"});
+    commands(lmp,
+             {"fix hvar all sph/astro/h dhdt", "velocity all create 0.5 4928459", "run 20",
+              "write_restart " + restart, "run 20"});
     x_ref = per_atom(lmp, "x", 0);
     v_ref = per_atom(lmp, "v", 1);
     u_ref = per_atom(lmp, "u");
@@ -215,18 +219,50 @@ TEST(PairOptions, SettingsComeBackFromARestartFile)
       commands(lmp, {"run 2", "write_restart " + restart});
     }
     auto lmp = open_lammps();
-    commands(lmp, {"read_restart " + restart, "fix gas all sph/astro",
-                   "fix hvar all sph/astro/h iterate"});
+    commands(
+        lmp,
+        {"read_restart " + restart, "fix gas all sph/astro", "fix hvar all sph/astro/h iterate"});
     const std::string message = error_of(lmp, "run 0");
     if (option.empty())
       EXPECT_EQ(message, "");
     else
-      EXPECT_NE(message.find("pair_style sph/astro " + option + " needs fixed h or fix "
+      EXPECT_NE(message.find("pair_style sph/astro " + option +
+                             " needs fixed h or fix "
                              "sph/astro/h dhdt"),
                 std::string::npos)
           << option << ": " << message;
   }
   std::remove(restart.c_str());
+}
+
+TEST(DensityContinuity, DataFileRoundTrip)
+{
+  // write_data adds the section SPH_ASTRO_CONTINUITY; read back with its fix defined first
+  const std::string data = "test_pair_options.data";
+  std::map<int, double> h_ref;
+  {
+    auto lmp = open_lammps();
+    gas(lmp, "box", 2, GAS + " density continuity", "sph/astro");
+    commands(lmp, {"run 5", "write_data " + data});
+    h_ref = per_atom(lmp, "h");
+  }
+  auto lmp = open_lammps();
+  commands(lmp,
+           {"units lj", "atom_style atomic", "atom_modify map array", "sph/astro/state",
+            "fix SPH_ASTRO_CONTINUITY all property/atom d_rhoest d_drhodt ghost yes",
+            "read_data " + data +
+                " fix SPH_ASTRO_STATE NULL SPH_ASTRO_STATE fix SPH_ASTRO_CONTINUITY NULL "
+                "SPH_ASTRO_CONTINUITY",
+            "pair_style " + GAS + " density continuity", "pair_coeff * *", "fix gas all sph/astro",
+            "run 0"});
+  const auto h = per_atom(lmp, "h");
+  const auto rho = per_atom(lmp, "rho");
+  ASSERT_EQ(h.size(), h_ref.size());
+  for (const auto &[id, value] : h_ref) {
+    EXPECT_EQ(h.at(id), value);
+    EXPECT_GT(rho.at(id), 0.5);
+  }
+  std::remove(data.c_str());
 }
 
 // ---------------------------------------------------------------- per-atom output
@@ -280,8 +316,9 @@ class BadOptionInput : public ::testing::Test {
   }
   void setup_with(const std::string &options, const std::string &fix = "sph/astro")
   {
-    commands(lmp, {"pair_style " + GAS + " " + options, "pair_coeff * *", "fix gas all " + fix,
-                   "set group all d_h 0.75", "set group all d_u 1.0"});
+    commands(lmp,
+             {"pair_style " + GAS + " " + options, "pair_coeff * *", "fix gas all " + fix,
+              "set group all d_h 0.75", "set group all d_u 1.0"});
   }
 };
 
@@ -309,19 +346,22 @@ TEST_F(BadOptionInput, OptionsNeedFixedOrDhdtSmoothingLengths)
                "pair_style sph/astro density continuity needs fixed h or fix sph/astro/h dhdt: "
                "with fix sph/astro/h iterate h follows from the summed density");
   commands(lmp, {"pair_style " + GAS + " symmetrise kernel"});
-  expect_error("run 0", "pair_style sph/astro symmetrise kernel needs fixed h or fix "
-                        "sph/astro/h dhdt");
+  expect_error("run 0",
+               "pair_style sph/astro symmetrise kernel needs fixed h or fix "
+               "sph/astro/h dhdt");
   commands(lmp, {"pair_style " + GAS + " pressure geometric"});
-  expect_error("run 0", "pair_style sph/astro pressure geometric needs fixed h or fix "
-                        "sph/astro/h dhdt");
+  expect_error("run 0",
+               "pair_style sph/astro pressure geometric needs fixed h or fix "
+               "sph/astro/h dhdt");
   commands(lmp, {"unfix hvar", "run 0"});    // fine with fixed h
 }
 
 TEST_F(BadOptionInput, GeometricPressureNeedsTheEnergyEquation)
 {
   setup_with("pressure geometric", "sph/astro thermal entropy");
-  expect_error("run 0", "pair_style sph/astro pressure geometric needs fix sph/astro thermal "
-                        "energy");
+  expect_error("run 0",
+               "pair_style sph/astro pressure geometric needs fix sph/astro thermal "
+               "energy");
 }
 
 int main(int argc, char **argv)

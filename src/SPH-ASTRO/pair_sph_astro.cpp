@@ -291,16 +291,15 @@ void PairSPHAstro::settings(int narg, char **arg)
                    value);
       iarg += 2;
     } else if (key == "symmetrise") {
-      if (iarg + 2 > narg)
-        utils::missing_cmd_args(FLERR, "pair_style sph/astro symmetrise", error);
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_style sph/astro symmetrise", error);
       const std::string value = arg[iarg + 1];
       if (value == "hmean")
         symmetrise_kernel_ = false;
       else if (value == "kernel")
         symmetrise_kernel_ = true;
       else
-        error->all(FLERR,
-                   "pair_style sph/astro: unknown symmetrise '{}'; allowed: hmean, kernel", value);
+        error->all(FLERR, "pair_style sph/astro: unknown symmetrise '{}'; allowed: hmean, kernel",
+                   value);
       iarg += 2;
     } else if (key == "pressure") {
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_style sph/astro pressure", error);
@@ -497,8 +496,7 @@ double PairSPHAstro::init_one(int i, int j)
 // prediction d_rhoest of fix sph/astro (d_rho then holds the integrated density)
 double *PairSPHAstro::eval_density() const
 {
-  return density_continuity_ ? atom->dvector[continuity_index_.rhoest]
-                             : atom->dvector[state_.rho];
+  return density_continuity_ ? atom->dvector[continuity_index_.rhoest] : atom->dvector[state_.rho];
 }
 
 void PairSPHAstro::equation_of_state()
@@ -525,9 +523,9 @@ void PairSPHAstro::equation_of_state()
   }
   for (int i = 0; i < nlocal; i++) {
     if (!(rho[i] > 0.0) || !std::isfinite(rho[i]))
-      error->one(FLERR,
-                 "pair_style sph/astro: atom {} has density {} ({}position not finite?)", tag[i],
-                 rho[i], density_continuity_ ? "density continuity: too large a timestep? " : "");
+      error->one(FLERR, "pair_style sph/astro: atom {} has density {} ({}position not finite?)",
+                 tag[i], rho[i],
+                 density_continuity_ ? "density continuity: too large a timestep? " : "");
     if (h[i] > hcap_type_[type[i]])
       error->one(FLERR,
                  "pair_style sph/astro: atom {} has h = {} larger than the h = {} the neighbour "
@@ -808,7 +806,6 @@ template <class KERNEL, int DIM> void PairSPHAstro::density_gradh()
   hfix_->record(iter_sum, iter_max, inum, failures, capped);
 }
 
-
 int PairSPHAstro::pair_form() const
 {
   if (hmode_ == HMode::GRADH) return GRADH;
@@ -944,10 +941,8 @@ template <class KERNEL, int DIM, int KFORM> void PairSPHAstro::velocity_curl()
         if ((r2 >= hR2i && r2 >= hR2j) || r2 == 0.0) continue;
         const double r = std::sqrt(r2);
         const double hinvi = 1.0 / hi, hinvj = 1.0 / hj;
-        const double dwi =
-            r2 < hR2i ? inv_h_pow_dim<DIM>(hinvi) * hinvi * K::dw(r * hinvi) : 0.0;
-        const double dwj =
-            r2 < hR2j ? inv_h_pow_dim<DIM>(hinvj) * hinvj * K::dw(r * hinvj) : 0.0;
+        const double dwi = r2 < hR2i ? inv_h_pow_dim<DIM>(hinvi) * hinvi * K::dw(r * hinvi) : 0.0;
+        const double dwj = r2 < hR2j ? inv_h_pow_dim<DIM>(hinvj) * hinvj * K::dw(r * hinvj) : 0.0;
         dw = 0.5 * sigma * (dwi + dwj) / r;
       } else {
         const double hk = GH ? hi : 0.5 * (hi + h[j]);
@@ -982,7 +977,6 @@ template <class KERNEL, int DIM, int KFORM> void PairSPHAstro::velocity_curl()
     if (balsara_on_) balsara_[i] = balsara_factor(divv, curlv, soundspeed_[i], h[i]);
   }
 }
-
 
 template <class KERNEL> void PairSPHAstro::dispatch_dimension()
 {

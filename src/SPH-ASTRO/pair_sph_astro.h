@@ -106,7 +106,7 @@ class PairSPHAstro : public Pair {
   bool pressure_geometric_ = false;
   SPHAstro::ContinuityIndex continuity_index_;
   bigint counts_step_ = -1;    // step whose force evaluation nneigh_ was counted in
-  double *pgeo_ = nullptr;           // pressure geometric: sqrt(P)/rho (owned + ghost)
+  double *pgeo_ = nullptr;     // pressure geometric: sqrt(P)/rho (owned + ghost)
 
   // physical heat conduction (pair_sph_astro_conduction.cpp): a separate pass after the
   // force pass, only when kappa > 0; conduct_ holds this step's du/dt from it (owned + ghost)
@@ -166,17 +166,23 @@ class PairSPHAstro : public Pair {
   // pair forms of the force pass (template parameter FORM): how W_ij is symmetrised and how
   // the pressure term is; grad-h terms come with their own kernels and the standard pressure
   enum PairForm {
-    HMEAN = 0,               // W(r_ij, h_ij), P_i/rho_i^2 + P_j/rho_j^2
-    GRADH = 1,               // W(h_i), W(h_j) with grad-h factors (fix sph/astro/h iterate)
-    KMEAN = 2,               // (W(h_i) + W(h_j))/2, P_i/rho_i^2 + P_j/rho_j^2
-    HMEAN_GEOMETRIC = 3,     // W(r_ij, h_ij), 2 sqrt(P_i P_j)/(rho_i rho_j)
-    KMEAN_GEOMETRIC = 4      // (W(h_i) + W(h_j))/2, 2 sqrt(P_i P_j)/(rho_i rho_j)
+    HMEAN = 0,              // W(r_ij, h_ij), P_i/rho_i^2 + P_j/rho_j^2
+    GRADH = 1,              // W(h_i), W(h_j) with grad-h factors (fix sph/astro/h iterate)
+    KMEAN = 2,              // (W(h_i) + W(h_j))/2, P_i/rho_i^2 + P_j/rho_j^2
+    HMEAN_GEOMETRIC = 3,    // W(r_ij, h_ij), 2 sqrt(P_i P_j)/(rho_i rho_j)
+    KMEAN_GEOMETRIC = 4     // (W(h_i) + W(h_j))/2, 2 sqrt(P_i P_j)/(rho_i rho_j)
   };
   static constexpr bool form_gradh(int f) { return f == GRADH; }
   static constexpr bool form_kmean(int f) { return f == KMEAN || f == KMEAN_GEOMETRIC; }
-  static constexpr bool form_geometric(int f) { return f == HMEAN_GEOMETRIC || f == KMEAN_GEOMETRIC; }
+  static constexpr bool form_geometric(int f)
+  {
+    return f == HMEAN_GEOMETRIC || f == KMEAN_GEOMETRIC;
+  }
   // the kernel part of a form alone (velocity_curl): HMEAN, GRADH or KMEAN
-  static constexpr int kernel_form(int f) { return form_gradh(f) ? GRADH : (form_kmean(f) ? KMEAN : HMEAN); }
+  static constexpr int kernel_form(int f)
+  {
+    return form_gradh(f) ? GRADH : (form_kmean(f) ? KMEAN : HMEAN);
+  }
   int pair_form() const;
   template <class KERNEL, int DIM, int KFORM> void velocity_curl();
   template <class KERNEL, int DIM, bool KM> void density_sum();

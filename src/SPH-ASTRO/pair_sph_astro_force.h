@@ -189,10 +189,10 @@ template <class KERNEL, int DIM, int FORM> void PairSPHAstro::dispatch_force()
     visc = balsara_on_ ? SIGNAL_BALSARA : SIGNAL;
   else if (visc_on_)
     visc = balsara_on_ ? BALSARA : CLASSIC;
-#define SPH_ASTRO_FORCE(E, V, C)                     \
-  {                                                  \
-    force_pass<KERNEL, DIM, FORM, E, V, C>();        \
-    return;                                          \
+#define SPH_ASTRO_FORCE(E, V, C)              \
+  {                                           \
+    force_pass<KERNEL, DIM, FORM, E, V, C>(); \
+    return;                                   \
   }
 #define SPH_ASTRO_FORCE_VISC(E, C)                                     \
   {                                                                    \
@@ -211,22 +211,22 @@ template <class KERNEL, int DIM, int FORM> void PairSPHAstro::dispatch_force()
 
 // explicit instantiations of dispatch_force for the forms other than HMEAN and GRADH live in
 // pair_sph_astro_forms.cpp
-#define SPH_ASTRO_FORMS_OF_KERNEL(PREFIX, KT)                                              \
+#define SPH_ASTRO_FORMS_OF_KERNEL(PREFIX, KT)                                                \
   PREFIX template void PairSPHAstro::dispatch_force<SPHAstro::KT, 2, PairSPHAstro::KMEAN>(); \
   PREFIX template void PairSPHAstro::dispatch_force<SPHAstro::KT, 3, PairSPHAstro::KMEAN>(); \
-  PREFIX template void                                                                     \
-      PairSPHAstro::dispatch_force<SPHAstro::KT, 2, PairSPHAstro::HMEAN_GEOMETRIC>();      \
-  PREFIX template void                                                                     \
-      PairSPHAstro::dispatch_force<SPHAstro::KT, 3, PairSPHAstro::HMEAN_GEOMETRIC>();      \
-  PREFIX template void                                                                     \
-      PairSPHAstro::dispatch_force<SPHAstro::KT, 2, PairSPHAstro::KMEAN_GEOMETRIC>();      \
-  PREFIX template void                                                                     \
-      PairSPHAstro::dispatch_force<SPHAstro::KT, 3, PairSPHAstro::KMEAN_GEOMETRIC>();
-#define SPH_ASTRO_OPTION_FORMS(PREFIX)                  \
-  SPH_ASTRO_FORMS_OF_KERNEL(PREFIX, KernelCubic)        \
-  SPH_ASTRO_FORMS_OF_KERNEL(PREFIX, KernelQuintic)      \
-  SPH_ASTRO_FORMS_OF_KERNEL(PREFIX, KernelWendlandC2)   \
-  SPH_ASTRO_FORMS_OF_KERNEL(PREFIX, KernelWendlandC4)   \
+  PREFIX template void                                                                       \
+  PairSPHAstro::dispatch_force<SPHAstro::KT, 2, PairSPHAstro::HMEAN_GEOMETRIC>();            \
+  PREFIX template void                                                                       \
+  PairSPHAstro::dispatch_force<SPHAstro::KT, 3, PairSPHAstro::HMEAN_GEOMETRIC>();            \
+  PREFIX template void                                                                       \
+  PairSPHAstro::dispatch_force<SPHAstro::KT, 2, PairSPHAstro::KMEAN_GEOMETRIC>();            \
+  PREFIX template void                                                                       \
+  PairSPHAstro::dispatch_force<SPHAstro::KT, 3, PairSPHAstro::KMEAN_GEOMETRIC>();
+#define SPH_ASTRO_OPTION_FORMS(PREFIX)                \
+  SPH_ASTRO_FORMS_OF_KERNEL(PREFIX, KernelCubic)      \
+  SPH_ASTRO_FORMS_OF_KERNEL(PREFIX, KernelQuintic)    \
+  SPH_ASTRO_FORMS_OF_KERNEL(PREFIX, KernelWendlandC2) \
+  SPH_ASTRO_FORMS_OF_KERNEL(PREFIX, KernelWendlandC4) \
   SPH_ASTRO_FORMS_OF_KERNEL(PREFIX, KernelGaussian)
 
 }    // namespace LAMMPS_NS
