@@ -83,12 +83,15 @@ void ComputeSPHAstroAtom::compute_peratom()
   const double *omega = static_cast<double *>(pair_->extract_peratom("omega", ncol));
   const bool gradh_omega = pair_->extract_peratom("omega_valid", ncol) != nullptr;
   const double *alpha = pair_->alpha_per_atom();
+  // with pair sph/astro density continuity the counts take a neighbour pass: only if asked
+  bool has_nneigh = false;
+  for (int field : fields_) has_nneigh = has_nneigh || field == NNEIGH;
   const double *columns[10] = {atom->dvector[state_.rho],
                                atom->dvector[state_.h],
                                static_cast<double *>(pair_->extract_peratom("pressure", ncol)),
                                static_cast<double *>(pair_->extract_peratom("soundspeed", ncol)),
                                atom->dvector[state_.u],
-                               static_cast<double *>(pair_->extract_peratom("nneigh", ncol)),
+                               has_nneigh ? pair_->neighbour_counts() : nullptr,
                                static_cast<double *>(pair_->extract_peratom("divv", ncol)),
                                atom->dvector[state_.dudt],
                                gradh_omega ? omega : nullptr,

@@ -12,6 +12,10 @@
 //   dt_cv = C h / (c + h|div v| + 1.2 (alpha c + beta h |div v|)),  dt_f = C_f sqrt(h / |a|)
 // and, for the ideal gas, dt_u = C_u u / |du/dt| where du/dt < 0 (keeps u positive); with
 // physical heat conduction dt_k = C_k rho h^2 / kappa (sph_astro_conduction.h).
+// With pair sph/astro density continuity rho is integrated in the same way as u:
+//   rho^{n+1/2} = rho^n + dt/2 drho^n,  rho_est = rho^{n+1/2} + dt/2 drho^n  (forces at n+1)
+//   rho^{n+1} = rho^{n+1/2} + dt/2 drho^{n+1},  drho_i/dt = sum_j m_j v_ij . grad_i W_ij
+// (seed 004 eq. 33), starting from one density summation at the first force evaluation.
 
 #include "fix_sph_astro.h"
 
@@ -139,6 +143,15 @@ void FixSPHAstro::post_constructor()
 {
   ensure_state(lmp, "fix sph/astro");
   if (entropy_) ensure_entropy_state(lmp, "fix sph/astro thermal entropy");
+  // a pair style read from a restart file did not create its state: LAMMPS restores the
+  // per-atom values of d_rhoest d_drhodt once the fix exists again
+  if (pair_has_continuity()) ensure_continuity_state(lmp, "fix sph/astro");
+}
+
+bool FixSPHAstro::pair_has_continuity() const
+{
+  auto *pair = dynamic_cast<PairSPHAstro *>(force->pair_match("^sph/astro$", 0, 0));
+  return pair && pair->density_continuity();
 }
 
 void FixSPHAstro::init()
@@ -163,14 +176,21 @@ void FixSPHAstro::init()
   }
   auto hfixes = modify->get_fix_by_style("^sph/astro/h$");
   hfix_ = hfixes.empty() ? nullptr : dynamic_cast<FixSPHAstroH *>(hfixes.front());
+  continuity_ = pair_->density_continuity();
+  if (continuity_ && !find_continuity_state(lmp, continuity_index_))
+    error->all(FLERR,
+               "fix sph/astro: pair_style sph/astro density continuity needs the per-atom state "
+               "fix {}; it is missing (define pair_style and fix sph/astro again)",
+               CONTINUITY_FIX_ID);
   if (xsph_eps_ > 0.0) neighbor->add_request(this, NeighConst::REQ_FULL);
   if (modify->get_fix_by_style("^sph/astro$").size() > 1)
     error->all(FLERR,
                "fix sph/astro: only one instance is allowed (it sets the global timestep); use "
                "one fix for all SPH particles");
 
-  // predictions are kept only when they belong to this step and v and u are as the last run
-  // left them (a continued or restarted run); after `velocity` or `set` they start anew
+  // predictions are kept only when they belong to this step and v and u (and rho) are as the
+  // last run left them (a continued or restarted run); after `velocity` or `set` they start
+  // anew
   const bool unchanged = hash_velocity_energy() == state_hash_;
   if (!unchanged) entropy_needs_init_ = true;    // A follows from the new u at the next density
   if (predicted_step_ != update->ntimestep || !unchanged) {
@@ -184,6 +204,11 @@ void FixSPHAstro::init()
       vest[i][1] = v[i][1];
       vest[i][2] = v[i][2];
       uest[i] = u[i];
+    }
+    if (continuity_) {
+      const double *rho = atom->dvector[state_.rho];
+      double *rhoest = atom->dvector[continuity_index_.rhoest];
+      for (int i = 0; i < nlocal; i++) rhoest[i] = rho[i];
     }
   }
 }
@@ -237,6 +262,9 @@ void FixSPHAstro::initial_integrate(int /*vflag*/)
   const double *dAdt = entropy_ ? atom->dvector[entropy_index_.dAdt] : nullptr;
   const int nlocal = atom->nlocal;
   double **dv_xsph = xsph_eps_ > 0.0 ? xsph_ : nullptr;    // drift velocity correction
+  double *rho = continuity_ ? atom->dvector[state_.rho] : nullptr;
+  double *rhoest = continuity_ ? atom->dvector[continuity_index_.rhoest] : nullptr;
+  const double *drhodt = continuity_ ? atom->dvector[continuity_index_.drhodt] : nullptr;
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) {
@@ -244,6 +272,7 @@ void FixSPHAstro::initial_integrate(int /*vflag*/)
       vest[i][1] = v[i][1];
       vest[i][2] = v[i][2];
       uest[i] = u[i];
+      if (rho) rhoest[i] = rho[i];
       continue;
     }
     const double dtfm = dtf / (rmass ? rmass[i] : mass[type[i]]);
@@ -262,6 +291,10 @@ void FixSPHAstro::initial_integrate(int /*vflag*/)
       uest[i] = u[i] + dtf * dudt[i];
     } else
       uest[i] = u[i];
+    if (rho) {    // density continuity: rho like u (seed 004 eq. 33)
+      rho[i] += dtf * drhodt[i];
+      rhoest[i] = rho[i] + dtf * drhodt[i];
+    }
   }
   predicted_step_ = update->ntimestep;
 }
@@ -280,7 +313,8 @@ void FixSPHAstro::final_integrate()
   const int nlocal = atom->nlocal;
   double *A = entropy_ ? atom->dvector[entropy_index_.A] : nullptr;
   const double *dAdt = entropy_ ? atom->dvector[entropy_index_.dAdt] : nullptr;
-  const double *rho = atom->dvector[state_.rho];
+  double *rho = atom->dvector[state_.rho];
+  const double *drhodt = continuity_ ? atom->dvector[continuity_index_.drhodt] : nullptr;
   const double gamma = pair_->eos().gamma;
 
   for (int i = 0; i < nlocal; i++) {
@@ -289,6 +323,14 @@ void FixSPHAstro::final_integrate()
     v[i][0] += dtfm * f[i][0];
     v[i][1] += dtfm * f[i][1];
     v[i][2] += dtfm * f[i][2];
+    if (drhodt) {    // density continuity: rho at the end of the step (before u of entropy)
+      rho[i] += dtf * drhodt[i];
+      if (!(rho[i] > 0.0) || !std::isfinite(rho[i]))
+        error->one(FLERR,
+                   "fix sph/astro: atom {} has density rho = {} (drho/dt = {}) at step {} with "
+                   "pair_style sph/astro density continuity; lower the timestep (courant, force)",
+                   atom->tag[i], rho[i], drhodt[i], update->ntimestep);
+    }
     if (entropy_) {
       // A and, from it, u = A rho^(gamma-1) / (gamma-1) at the end of the step (seed 000)
       A[i] += dtf * dAdt[i];
@@ -330,7 +372,8 @@ void FixSPHAstro::post_run()
   state_hash_ = hash_velocity_energy();
 }
 
-// order-independent hash of every atom's ID, v and u: XOR over atoms of a mixed 64-bit value
+// order-independent hash of every atom's ID, v and u (and rho, integrated with density
+// continuity): XOR over atoms of a mixed 64-bit value
 uint64_t FixSPHAstro::hash_velocity_energy() const
 {
   auto mix = [](uint64_t z) {    // splitmix64 finaliser
@@ -344,6 +387,7 @@ uint64_t FixSPHAstro::hash_velocity_energy() const
     return b;
   };
   const double *u = atom->dvector[state_.u];
+  const double *rho = pair_has_continuity() ? atom->dvector[state_.rho] : nullptr;
   double **v = atom->v;
   uint64_t local = 0;
   for (int i = 0; i < atom->nlocal; i++) {
@@ -352,6 +396,7 @@ uint64_t FixSPHAstro::hash_velocity_energy() const
     h = mix(h ^ bits(v[i][1]));
     h = mix(h ^ bits(v[i][2]));
     h = mix(h ^ bits(u[i]));
+    if (rho) h = mix(h ^ bits(rho[i]));
     local ^= h;
   }
   uint64_t all = 0;
@@ -541,6 +586,7 @@ void FixSPHAstro::write_restart(FILE *fp)
 void FixSPHAstro::restart(char *buf)
 {
   entropy_needs_init_ = false;    // A comes back with the restart file
+  density_needs_init_ = false;    // so does the integrated rho (density continuity)
   auto *list = reinterpret_cast<double *>(buf);
   int n = 0;
   predicted_step_ = static_cast<bigint>(list[n++]);

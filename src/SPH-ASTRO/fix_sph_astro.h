@@ -45,6 +45,10 @@ class FixSPHAstro : public Fix {
   // entropy formulation: A must be (re)derived from u and rho at the next density pass
   bool entropy_needs_init() const { return entropy_needs_init_; }
   void entropy_initialised() { entropy_needs_init_ = false; }
+  // pair sph/astro density continuity: rho still needs its one summation (the first force
+  // evaluation after this fix was defined; not after read_restart)
+  bool density_needs_init() const { return density_needs_init_; }
+  void density_initialised() { density_needs_init_ = false; }
 
   // reference total energy of a compute sph/astro/global (by compute ID): set at its first
   // evaluation, kept across restarts
@@ -68,10 +72,16 @@ class FixSPHAstro : public Fix {
   bool entropy_ = false;
   bool entropy_needs_init_ = true;
   SPHAstro::EntropyIndex entropy_index_;
+  // pair sph/astro density continuity: rho is integrated like u, with the prediction d_rhoest
+  bool continuity_ = false;
+  bool density_needs_init_ = true;
+  SPHAstro::ContinuityIndex continuity_index_;
+  bool pair_has_continuity() const;
 
   // restart state
   bigint predicted_step_ = -1;    // step at which d2_vest/d_uest hold predictions
-  uint64_t state_hash_ = 0;       // hash of v and u when the last run ended
+  uint64_t state_hash_ = 0;       // hash of v and u (and rho with density continuity) when
+                                  // the last run ended
   std::map<std::string, double> reference_energy_;
   bool dt_pending_ = false;    // first dt of a run: set once all setup forces are in
   double user_dt_ = 0.0;       // with dt fixed: the step to restore after a tend clip

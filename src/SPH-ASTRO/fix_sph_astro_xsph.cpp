@@ -50,7 +50,7 @@ template <class KERNEL, int DIM> void FixSPHAstro::xsph_loop()
   const int *type = atom->type;
   const double *rmass = atom->rmass;
   const double *mass = atom->mass;
-  const double *rho = atom->dvector[state_.rho];
+  const double *rho = pair_->eval_density();    // that of the force evaluation (ghosts too)
   const double *h = atom->dvector[state_.h];
   double **vest = atom->darray[state_.vest];
   const double sigma = K::sigma();

@@ -16,8 +16,20 @@
 // Total energy sum_i m_i (v_i^2/2 + u_i) is conserved by these pair terms up to time
 // integration error (seed 004 sec. 9.5.3). Velocities in pass 2 are the predicted ones
 // (d2_vest) written by fix sph/astro, so the viscosity sees v at the end of the step.
+//
+// Options for fixed h and dh/dt (keywords density, symmetrise, pressure):
+//   density continuity  pass 1 is skipped: rho is integrated by fix sph/astro with
+//                       drho_i/dt = sum_j m_j v_ij . grad_i W_ij           (seed 004 eq. 33)
+//                       (after one summation at the first force evaluation)
+//   symmetrise kernel   W_ij = (W(r_ij, h_i) + W(r_ij, h_j))/2 and its gradient in every term
+//                       (seed 000, "alternative ways to force anti-symmetry")
+//   pressure geometric  dv_i/dt = -sum_j m_j (2 sqrt(P_i P_j)/(rho_i rho_j) + Pi_ij) grad_i W_ij
+//                       du_i/dt = sum_j m_j sqrt(P_i P_j)/(rho_i rho_j) v_ij . grad_i W_ij + visc.
+//                       (seed 000 ibid.; the energy equation in the form of the force, as
+//                       seed 004 eqs. 41-42 pair with eqs. 23 and 26)
 
 #include "pair_sph_astro.h"
+#include "pair_sph_astro_force.h"
 
 #include "fix_sph_astro.h"
 #include "fix_sph_astro_h.h"
@@ -68,6 +80,7 @@ PairSPHAstro::~PairSPHAstro()
   memory->destroy(curlv_);
   memory->destroy(balsara_);
   memory->destroy(vsigmax_);
+  memory->destroy(pgeo_);
   memory->destroy(hcap_type_);
   memory->destroy(conduct_);
   if (allocated) {
@@ -90,7 +103,9 @@ void PairSPHAstro::allocate()
 void PairSPHAstro::grow_work_arrays()
 {
   // (re)allocate also when curl v or v_sig became needed after the arrays were made
-  if (atom->nmax <= nmax_ && (!curl_on_ || curlv_) && (!signal_viscosity() || vsigmax_)) return;
+  if (atom->nmax <= nmax_ && (!curl_on_ || curlv_) && (!signal_viscosity() || vsigmax_) &&
+      (!pressure_geometric_ || pgeo_))
+    return;
   nmax_ = MAX(nmax_, atom->nmax);
   memory->destroy(pressure_);
   memory->destroy(soundspeed_);
@@ -109,6 +124,8 @@ void PairSPHAstro::grow_work_arrays()
   }
   if (balsara_on_) memory->create(balsara_, nmax_, "pair:sph/astro:balsara");
   if (signal_viscosity()) memory->create(vsigmax_, nmax_, "pair:sph/astro:vsigmax");
+  memory->destroy(pgeo_);
+  if (pressure_geometric_) memory->create(pgeo_, nmax_, "pair:sph/astro:pgeo");
   memory->create(pressure_, nmax_, "pair:sph/astro:pressure");
   memory->create(soundspeed_, nmax_, "pair:sph/astro:soundspeed");
   memory->create(vdotgradw_, nmax_, "pair:sph/astro:vdotgradw");
@@ -118,7 +135,10 @@ void PairSPHAstro::grow_work_arrays()
 
 /* ----------------------------------------------------------------------
    pair_style sph/astro [kernel NAME] [eos ideal GAMMA | isothermal CS | polytropic K GAMMA]
-                        [viscosity classic ALPHA BETA | viscosity none] [epsilon EPS]
+                        [viscosity classic ALPHA BETA | signal ALPHA [BETA] | none]
+                        [balsara yes|no] [conductivity ALPHA_U] [conduction KAPPA]
+                        [epsilon EPS] [density summation|continuity]
+                        [symmetrise hmean|kernel] [pressure standard|geometric]
 ------------------------------------------------------------------------- */
 
 void PairSPHAstro::settings(int narg, char **arg)
@@ -134,6 +154,9 @@ void PairSPHAstro::settings(int narg, char **arg)
   balsara_on_ = false;
   visc_signal_ = false;
   cond_kappa_ = 0.0;
+  density_continuity_ = false;
+  symmetrise_kernel_ = false;
+  pressure_geometric_ = false;
   int iarg = 0;
   while (iarg < narg) {
     const std::string key = arg[iarg];
@@ -255,12 +278,50 @@ void PairSPHAstro::settings(int narg, char **arg)
       if (!(visc_eps_ > 0.0))
         error->all(FLERR, "pair_style sph/astro: epsilon = {} must be > 0", arg[iarg + 1]);
       iarg += 2;
+    } else if (key == "density") {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_style sph/astro density", error);
+      const std::string value = arg[iarg + 1];
+      if (value == "summation")
+        density_continuity_ = false;
+      else if (value == "continuity")
+        density_continuity_ = true;
+      else
+        error->all(FLERR,
+                   "pair_style sph/astro: unknown density '{}'; allowed: summation, continuity",
+                   value);
+      iarg += 2;
+    } else if (key == "symmetrise") {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_style sph/astro symmetrise", error);
+      const std::string value = arg[iarg + 1];
+      if (value == "hmean")
+        symmetrise_kernel_ = false;
+      else if (value == "kernel")
+        symmetrise_kernel_ = true;
+      else
+        error->all(FLERR, "pair_style sph/astro: unknown symmetrise '{}'; allowed: hmean, kernel",
+                   value);
+      iarg += 2;
+    } else if (key == "pressure") {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_style sph/astro pressure", error);
+      const std::string value = arg[iarg + 1];
+      if (value == "standard")
+        pressure_geometric_ = false;
+      else if (value == "geometric")
+        pressure_geometric_ = true;
+      else
+        error->all(FLERR,
+                   "pair_style sph/astro: unknown pressure '{}'; allowed: standard, geometric",
+                   value);
+      iarg += 2;
     } else
       error->all(FLERR,
                  "pair_style sph/astro: unknown keyword '{}'; allowed: kernel, eos, viscosity, "
-                 "balsara, conductivity, conduction, epsilon",
+                 "balsara, conductivity, conduction, epsilon, density, symmetrise, pressure",
                  key);
   }
+  // the integrated density and its prediction live in their own per-atom state; it is
+  // created here or, after read_restart, by fix sph/astro (then LAMMPS restores its values)
+  if (density_continuity_) ensure_continuity_state(lmp, "pair_style sph/astro density continuity");
   kernel_radius_ = SPHAstro::kernel_radius(kernel_);
   if (balsara_on_ && !visc_on_)
     error->all(FLERR, "pair_style sph/astro: balsara yes needs viscosity classic or signal");
@@ -338,6 +399,33 @@ void PairSPHAstro::init_style()
                "alpha > 0 (classic: beta scales with the particle's alpha as beta/alpha)");
   curl_on_ = balsara_on_ || (switch_ && switch_->needs_curl());
 
+  // the seeds' other choices are those of the fixed-h equations; with grad-h terms the
+  // density, its kernels and the pressure term follow from the h-rho relation
+  if (hmode_ == HMode::GRADH) {
+    if (density_continuity_)
+      error->all(FLERR,
+                 "pair_style sph/astro density continuity needs fixed h or fix sph/astro/h dhdt: "
+                 "with fix sph/astro/h iterate h follows from the summed density");
+    if (symmetrise_kernel_)
+      error->all(FLERR,
+                 "pair_style sph/astro symmetrise kernel needs fixed h or fix sph/astro/h dhdt: "
+                 "with fix sph/astro/h iterate the grad-h equations use W(h_i) and W(h_j) "
+                 "already");
+    if (pressure_geometric_)
+      error->all(FLERR,
+                 "pair_style sph/astro pressure geometric needs fixed h or fix sph/astro/h dhdt: "
+                 "the grad-h equations (fix sph/astro/h iterate) have their own pressure term");
+  }
+  if (pressure_geometric_ && entropy_)
+    error->all(FLERR,
+               "pair_style sph/astro pressure geometric needs fix sph/astro thermal energy: with "
+               "thermal entropy the P dV work is P_i/rho_i^2 drho_i/dt, which does not match the "
+               "geometric-mean force");
+  if (density_continuity_ && !find_continuity_state(lmp, continuity_index_))
+    error->all(FLERR,
+               "pair_style sph/astro density continuity: the per-atom state fix {} is missing",
+               CONTINUITY_FIX_ID);
+
   // every particle needs a positive mass and smoothing length; the list cutoffs are set
   // by the largest h of each type
   const int nlocal = atom->nlocal;
@@ -396,16 +484,25 @@ double PairSPHAstro::init_one(int i, int j)
 {
   if (setflag[i][j] == 0)
     error->all(FLERR, "pair_style sph/astro: pair_coeff for types {} {} is not set", i, j);
-  if (hmode_ == HMode::GRADH) return kernel_radius_ * MAX(hcap_type_[i], hcap_type_[j]);
+  // W(h_i) and W(h_j) (grad-h terms or the averaged kernel) reach R max(h_i, h_j)
+  if (hmode_ == HMode::GRADH || symmetrise_kernel_)
+    return kernel_radius_ * MAX(hcap_type_[i], hcap_type_[j]);
   return kernel_radius_ * 0.5 * (hcap_type_[i] + hcap_type_[j]);
 }
 
 /* ---------------------------------------------------------------------- */
 
+// the density of the force evaluation: the summed d_rho, or with density continuity the
+// prediction d_rhoest of fix sph/astro (d_rho then holds the integrated density)
+double *PairSPHAstro::eval_density() const
+{
+  return density_continuity_ ? atom->dvector[continuity_index_.rhoest] : atom->dvector[state_.rho];
+}
+
 void PairSPHAstro::equation_of_state()
 {
   const int nlocal = atom->nlocal;
-  const double *rho = atom->dvector[state_.rho];
+  const double *rho = eval_density();
   const double *h = atom->dvector[state_.h];
   double *uest = atom->dvector[state_.uest];
   const tagint *tag = atom->tag;
@@ -426,8 +523,9 @@ void PairSPHAstro::equation_of_state()
   }
   for (int i = 0; i < nlocal; i++) {
     if (!(rho[i] > 0.0) || !std::isfinite(rho[i]))
-      error->one(FLERR, "pair_style sph/astro: atom {} has density {} (position not finite?)",
-                 tag[i], rho[i]);
+      error->one(FLERR, "pair_style sph/astro: atom {} has density {} ({}position not finite?)",
+                 tag[i], rho[i],
+                 density_continuity_ ? "density continuity: too large a timestep? " : "");
     if (h[i] > hcap_type_[type[i]])
       error->one(FLERR,
                  "pair_style sph/astro: atom {} has h = {} larger than the h = {} the neighbour "
@@ -446,24 +544,34 @@ void PairSPHAstro::equation_of_state()
 
 // du_i/dt so far holds the dissipative heating (viscosity, conductivity); add the P dV work
 // P_i/(Omega_i rho_i^2) sum_j m_j v_ij . grad W (Omega = 1 without grad-h terms). With the
-// entropy formulation dA_i/dt = (gamma-1) / rho_i^(gamma-1) x heating (seed 000).
-void PairSPHAstro::finish_thermal_rates(bool gradh)
+// entropy formulation dA_i/dt = (gamma-1) / rho_i^(gamma-1) x heating (seed 000). With
+// pressure geometric the P dV work is already in du_i/dt (pdv_done; no entropy form then).
+void PairSPHAstro::finish_thermal_rates(bool gradh, bool pdv_done)
 {
   const int nlocal = atom->nlocal;
-  const double *rho = atom->dvector[state_.rho];
+  const double *rho = eval_density();
   double *dudt = atom->dvector[state_.dudt];
   if (entropy_) {
     double *dAdt = atom->dvector[entropy_index_.dAdt];
     const double g1 = eos_.gamma - 1.0;
     for (int i = 0; i < nlocal; i++) dAdt[i] = g1 * std::pow(rho[i], -g1) * dudt[i];
   }
+  if (pdv_done) return;
   for (int i = 0; i < nlocal; i++) {
     const double omega = gradh ? omega_[i] : 1.0;
     dudt[i] += pressure_[i] / (omega * rho[i] * rho[i]) * vdotgradw_[i];
   }
 }
 
-template <class KERNEL, int DIM, bool ENERGY, int VISC, bool COND> void PairSPHAstro::eval()
+/* ----------------------------------------------------------------------
+   density summation with fixed h or dh/dt, over the half list (seed 000, "density"; seed
+   004 eq. 27):
+     rho_i = sum_j m_j W_ij,  W_ij = W(r_ij, h_ij), h_ij = (h_i + h_j)/2          (hmean)
+                              W_ij = (W(r_ij, h_i) + W(r_ij, h_j))/2             (KM: kernel)
+   including the particle's own m_i W(0, h_i); N_i counts the partners inside the support.
+------------------------------------------------------------------------- */
+
+template <class KERNEL, int DIM, bool KM> void PairSPHAstro::density_sum()
 {
   using K = Kernel<KERNEL, DIM>;
   double **x = atom->x;
@@ -486,12 +594,6 @@ template <class KERNEL, int DIM, bool ENERGY, int VISC, bool COND> void PairSPHA
   const double R2 = K::radius * K::radius;
   const double w0 = K::w(0.0);
 
-  // pass 1: density (with dh/dt the ghosts first need this step's h)
-
-  if (hmode_ == HMode::DHDT) {
-    comm_stage_ = Stage::SMOOTHING_LENGTH;
-    comm->forward_comm(this, 1);
-  }
   for (int i = 0; i < nzero; i++) {
     rho[i] = 0.0;
     nneigh_[i] = 0.0;
@@ -500,8 +602,10 @@ template <class KERNEL, int DIM, bool ENERGY, int VISC, bool COND> void PairSPHA
     const int i = ilist[ii];
     const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
     const double hi = h[i];
+    const double hinvi = 1.0 / hi;
+    const double hR2i = R2 * hi * hi;
     const double mi = rmass ? rmass[i] : mass[type[i]];
-    double rhoi = mi * sigma * inv_h_pow_dim<DIM>(1.0 / hi) * w0;
+    double rhoi = mi * sigma * inv_h_pow_dim<DIM>(hinvi) * w0;
     double ni = 0.0;
     const int *jlist = firstneigh[i];
     const int jnum = numneigh[i];
@@ -509,10 +613,22 @@ template <class KERNEL, int DIM, bool ENERGY, int VISC, bool COND> void PairSPHA
       const int j = jlist[jj] & NEIGHMASK;
       const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
       const double r2 = dx * dx + dy * dy + dz * dz;
-      const double hij = 0.5 * (hi + h[j]);
-      if (r2 >= R2 * hij * hij) continue;
-      const double hinv = 1.0 / hij;
-      const double wij = sigma * inv_h_pow_dim<DIM>(hinv) * K::w(std::sqrt(r2) * hinv);
+      double wij;
+      if (KM) {
+        const double hj = h[j];
+        const double hR2j = R2 * hj * hj;
+        if (r2 >= hR2i && r2 >= hR2j) continue;
+        const double r = std::sqrt(r2);
+        const double hinvj = 1.0 / hj;
+        const double wi = r2 < hR2i ? inv_h_pow_dim<DIM>(hinvi) * K::w(r * hinvi) : 0.0;
+        const double wj = r2 < hR2j ? inv_h_pow_dim<DIM>(hinvj) * K::w(r * hinvj) : 0.0;
+        wij = 0.5 * sigma * (wi + wj);
+      } else {
+        const double hij = 0.5 * (hi + h[j]);
+        if (r2 >= R2 * hij * hij) continue;
+        const double hinv = 1.0 / hij;
+        wij = sigma * inv_h_pow_dim<DIM>(hinv) * K::w(std::sqrt(r2) * hinv);
+      }
       const double mj = rmass ? rmass[j] : mass[type[j]];
       rhoi += mj * wij;
       ni += 1.0;
@@ -528,11 +644,51 @@ template <class KERNEL, int DIM, bool ENERGY, int VISC, bool COND> void PairSPHA
     comm_stage_ = Stage::DENSITY;
     comm->reverse_comm(this);
   }
-  equation_of_state();
-  if (curl_on_) velocity_curl<KERNEL, DIM, false>();
-  comm_stage_ = Stage::DENSITY;
-  comm->forward_comm(this);
-  force_pass<KERNEL, DIM, false, ENERGY, VISC, COND>();
+}
+
+// density continuity without a summation: the neighbour counts of compute sph/astro/atom
+// (partners inside R h_ij, or R max(h_i, h_j) with the averaged kernel), a pass only for them,
+// run when they are asked for (x, h and the lists are still those of the force evaluation)
+const double *PairSPHAstro::neighbour_counts()
+{
+  if (counts_step_ != computed_step_ && computed_step_ >= 0) {
+    count_neighbours();
+    counts_step_ = computed_step_;
+  }
+  return nneigh_;
+}
+
+void PairSPHAstro::count_neighbours()
+{
+  double **x = atom->x;
+  const double *h = atom->dvector[state_.h];
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  const int newton_pair = force->newton_pair;
+  const double R2 = kernel_radius_ * kernel_radius_;
+  const bool km = symmetrise_kernel_;
+  for (int i = 0; i < (newton_pair ? nall : nlocal); i++) nneigh_[i] = 0.0;
+  for (int ii = 0; ii < list->inum; ii++) {
+    const int i = list->ilist[ii];
+    const double hi = h[i];
+    const int *jlist = list->firstneigh[i];
+    const int jnum = list->numneigh[i];
+    double ni = 0.0;
+    for (int jj = 0; jj < jnum; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      const double hk = km ? MAX(hi, h[j]) : 0.5 * (hi + h[j]);
+      if (r2 >= R2 * hk * hk) continue;
+      ni += 1.0;
+      if (newton_pair || j < nlocal) nneigh_[j] += 1.0;
+    }
+    nneigh_[i] += ni;
+  }
+  if (newton_pair) {
+    comm_stage_ = Stage::COUNT;
+    comm->reverse_comm(this, 1);
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -650,187 +806,85 @@ template <class KERNEL, int DIM> void PairSPHAstro::density_gradh()
   hfix_->record(iter_sum, iter_max, inum, failures, capped);
 }
 
-template <class KERNEL, int DIM, bool ENERGY, int VISC, bool COND> void PairSPHAstro::eval_gradh()
+int PairSPHAstro::pair_form() const
 {
-  density_gradh<KERNEL, DIM>();
-  equation_of_state();
-  if (curl_on_) velocity_curl<KERNEL, DIM, true>();
-  comm_stage_ = Stage::DENSITY;
-  comm->forward_comm(this);
-  force_pass<KERNEL, DIM, true, ENERGY, VISC, COND>();
+  if (hmode_ == HMode::GRADH) return GRADH;
+  if (symmetrise_kernel_) return pressure_geometric_ ? KMEAN_GEOMETRIC : KMEAN;
+  return pressure_geometric_ ? HMEAN_GEOMETRIC : HMEAN;
 }
+
+// the force pass for this scene's EOS, conductivity and viscosity, in pair form FORM
+
+// the option forms are instantiated in pair_sph_astro_forms.cpp
+SPH_ASTRO_OPTION_FORMS(extern)
 
 /* ----------------------------------------------------------------------
-   force pass: accelerations, du/dt (heating and P dV), div v, over the half list.
-   Kernel gradients: GRADH: grad W(h_i) and grad W(h_j) with the grad-h factors and their
-   mean for the dissipative terms; otherwise grad W(h_ij), h_ij = (h_i + h_j)/2, for all
-   terms (Omega = 1). The dissipative terms are those of sph_astro_pair_terms.h.
+   one force evaluation: pass 1 density (summation, h iteration, or none with density
+   continuity after its first summation), EOS, optional curl v pass, forward communication,
+   pass 2 forces in the pair form of this scene
 ------------------------------------------------------------------------- */
-
-template <class KERNEL, int DIM, bool GRADH, bool ENERGY, int VISC, bool COND>
-void PairSPHAstro::force_pass()
-{
-  using K = Kernel<KERNEL, DIM>;
-  double **x = atom->x;
-  double **f = atom->f;
-  const int *type = atom->type;
-  const double *rmass = atom->rmass;
-  const double *mass = atom->mass;
-  const double *rho = atom->dvector[state_.rho];
-  const double *h = atom->dvector[state_.h];
-  double *dudt = atom->dvector[state_.dudt];
-  double **vest = atom->darray[state_.vest];
-  const double *uest = atom->dvector[state_.uest];
-  const int nlocal = atom->nlocal;
-  const int nall = nlocal + atom->nghost;
-  const int newton_pair = force->newton_pair;
-  const int nzero = newton_pair ? nall : nlocal;
-
-  const int inum = list->inum;
-  const int *ilist = list->ilist;
-  const int *numneigh = list->numneigh;
-  int **firstneigh = list->firstneigh;
-  const double sigma = K::sigma();
-  const double R2 = K::radius * K::radius;
-  const double alpha = visc_alpha_, beta = visc_beta_, eps = visc_eps_;
-  const double *alpha_atom = alpha_atom_;    // per-atom alpha of a switch, or null
-  const double beta_factor = alpha > 0.0 ? beta / alpha : 0.0;
-  const double alpha_u = cond_alpha_;
-
-  for (int i = 0; i < nzero; i++) {
-    vdotgradw_[i] = 0.0;
-    if (ENERGY) dudt[i] = 0.0;
-    if (visc_signal(VISC)) vsigmax_[i] = 2.0 * soundspeed_[i];    // at least the pair with itself
-  }
-  for (int ii = 0; ii < inum; ii++) {
-    const int i = ilist[ii];
-    const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
-    const double vxi = vest[i][0], vyi = vest[i][1], vzi = vest[i][2];
-    const double hi = h[i];
-    const double hinvi = 1.0 / hi;
-    const double normi = sigma * inv_h_pow_dim<DIM>(hinvi) * hinvi;
-    const double hR2i = R2 * hi * hi;
-    const double mi = rmass ? rmass[i] : mass[type[i]];
-    const double rhoi = rho[i];
-    const double prhoi = pressure_[i] / ((GRADH ? omega_[i] : 1.0) * rhoi * rhoi);
-    const double ci = soundspeed_[i];
-    double fxi = 0.0, fyi = 0.0, fzi = 0.0, vgwi = 0.0, heati = 0.0, vsigi = 0.0;
-    const int *jlist = firstneigh[i];
-    const int jnum = numneigh[i];
-    for (int jj = 0; jj < jnum; jj++) {
-      const int j = jlist[jj] & NEIGHMASK;
-      const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
-      const double r2 = dx * dx + dy * dy + dz * dz;
-      const double hj = h[j];
-      const double hij = 0.5 * (hi + hj);
-      // (dW/dr)/r for h_i and h_j (GRADH) or h_ij: grad_i W_ij(h) = dw * r_ij; grad W(0) = 0
-      double dwi, dwj, r;
-      if (GRADH) {
-        const double hR2j = R2 * hj * hj;
-        if ((r2 >= hR2i && r2 >= hR2j) || r2 == 0.0) continue;
-        r = std::sqrt(r2);
-        const double rinv = 1.0 / r;
-        const double hinvj = 1.0 / hj;
-        dwi = r2 < hR2i ? normi * K::dw(r * hinvi) * rinv : 0.0;
-        dwj = r2 < hR2j ? sigma * inv_h_pow_dim<DIM>(hinvj) * hinvj * K::dw(r * hinvj) * rinv : 0.0;
-      } else {
-        if (r2 >= R2 * hij * hij || r2 == 0.0) continue;
-        r = std::sqrt(r2);
-        const double hinv = 1.0 / hij;
-        dwi = dwj = sigma * inv_h_pow_dim<DIM>(hinv) * hinv * K::dw(r * hinv) / r;
-      }
-      const double dwbar = 0.5 * (dwi + dwj);
-      const double mj = rmass ? rmass[j] : mass[type[j]];
-      const double rhoj = rho[j];
-      const double prhoj = pressure_[j] / ((GRADH ? omega_[j] : 1.0) * rhoj * rhoj);
-      const double dvx = vxi - vest[j][0], dvy = vyi - vest[j][1], dvz = vzi - vest[j][2];
-      const double vdotr = dvx * dx + dvy * dy + dvz * dz;
-      double visc = 0.0;
-      if (visc_signal(VISC)) {
-        const double vsig = signal_velocity(vdotr / r, ci, soundspeed_[j], beta);
-        vsigi = MAX(vsigi, vsig);
-        if (newton_pair || j < nlocal) vsigmax_[j] = MAX(vsigmax_[j], vsig);
-      }
-      if (VISC && vdotr < 0.0) {
-        const double a = alpha_atom ? 0.5 * (alpha_atom[i] + alpha_atom[j]) : alpha;
-        const double shear = visc_balsara(VISC) ? 0.5 * (balsara_[i] + balsara_[j]) : 1.0;
-        if (visc_signal(VISC))
-          visc =
-              viscosity_signal(vdotr, r, a, beta, ci, soundspeed_[j], 0.5 * (rhoi + rhoj), shear);
-        else
-          visc = viscosity_classic(vdotr, r2, hij, a, alpha_atom ? beta_factor * a : beta, eps,
-                                   0.5 * (ci + soundspeed_[j]), 0.5 * (rhoi + rhoj), shear);
-      }
-      const double fpair = -mi * mj * (prhoi * dwi + prhoj * dwj + visc * dwbar);
-      fxi += dx * fpair;
-      fyi += dy * fpair;
-      fzi += dz * fpair;
-      vgwi += mj * vdotr * dwi;
-      if (ENERGY && VISC) heati += 0.5 * mj * visc * vdotr * dwbar;
-      double cond = 0.0;    // conductivity flux times the (mean) dW/dr
-      if (COND) {
-        cond = conductivity_flux(alpha_u, uest[i], uest[j], pressure_[i], pressure_[j],
-                                 0.5 * (rhoi + rhoj)) *
-            dwbar * r;
-        heati += mj * cond;
-      }
-      if (newton_pair || j < nlocal) {
-        f[j][0] -= dx * fpair;
-        f[j][1] -= dy * fpair;
-        f[j][2] -= dz * fpair;
-        vdotgradw_[j] += mi * vdotr * dwj;
-        if (ENERGY && VISC) dudt[j] += 0.5 * mi * visc * vdotr * dwbar;
-        if (COND) dudt[j] -= mi * cond;
-      }
-      if (evflag) ev_tally(i, j, nlocal, newton_pair, 0.0, 0.0, fpair, dx, dy, dz);
-    }
-    f[i][0] += fxi;
-    f[i][1] += fyi;
-    f[i][2] += fzi;
-    vdotgradw_[i] += vgwi;
-    if (ENERGY) dudt[i] += heati;
-    if (visc_signal(VISC)) vsigmax_[i] = MAX(vsigmax_[i], vsigi);
-  }
-  if (newton_pair) {
-    comm_stage_ = Stage::FORCE;
-    comm->reverse_comm(this);
-  }
-  for (int i = 0; i < nlocal; i++) divv_[i] = -vdotgradw_[i] / ((GRADH ? omega_[i] : 1.0) * rho[i]);
-  if (ENERGY) finish_thermal_rates(GRADH);
-}
 
 template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
 {
-  // only the ideal gas evolves u, so only it has conductivity
-  const bool energy = eos_.uses_energy();
-  const bool cond = energy && cond_alpha_ > 0.0;
-  const bool gradh = hmode_ == HMode::GRADH;
-  int visc = NO_VISCOSITY;
-  if (visc_on_ && visc_signal_)
-    visc = balsara_on_ ? SIGNAL_BALSARA : SIGNAL;
-  else if (visc_on_)
-    visc = balsara_on_ ? BALSARA : CLASSIC;
-#define SPH_ASTRO_EVAL(E, V, C)           \
-  {                                       \
-    if (gradh)                            \
-      eval_gradh<KERNEL, DIM, E, V, C>(); \
-    else                                  \
-      eval<KERNEL, DIM, E, V, C>();       \
-    return;                               \
+  const int form = pair_form();
+  const int nlocal = atom->nlocal;
+  if (hmode_ == HMode::DHDT) {    // the ghosts need this step's h
+    comm_stage_ = Stage::SMOOTHING_LENGTH;
+    comm->forward_comm(this, 1);
   }
-#define SPH_ASTRO_EVAL_VISC(E, C)                                     \
-  {                                                                   \
-    if (visc == SIGNAL_BALSARA) SPH_ASTRO_EVAL(E, SIGNAL_BALSARA, C); \
-    if (visc == SIGNAL) SPH_ASTRO_EVAL(E, SIGNAL, C);                 \
-    if (visc == BALSARA) SPH_ASTRO_EVAL(E, BALSARA, C);               \
-    if (visc == CLASSIC) SPH_ASTRO_EVAL(E, CLASSIC, C);               \
-    SPH_ASTRO_EVAL(E, NO_VISCOSITY, C);                               \
+  counts_step_ = update->ntimestep;    // a density pass counts the neighbours
+  if (form == GRADH)
+    density_gradh<KERNEL, DIM>();
+  else if (!density_continuity_ || integrator_->density_needs_init()) {
+    if (symmetrise_kernel_)
+      density_sum<KERNEL, DIM, true>();
+    else
+      density_sum<KERNEL, DIM, false>();
+    if (density_continuity_) {    // the integrated density starts from one summation
+      const double *rho = atom->dvector[state_.rho];
+      double *rhoest = atom->dvector[continuity_index_.rhoest];
+      for (int i = 0; i < nlocal; i++) rhoest[i] = rho[i];
+      integrator_->density_initialised();
+    }
+  } else
+    counts_step_ = -1;    // counted only if asked for (neighbour_counts)
+  equation_of_state();
+  if (curl_on_) {
+    if (form == GRADH)
+      velocity_curl<KERNEL, DIM, GRADH>();
+    else if (symmetrise_kernel_)
+      velocity_curl<KERNEL, DIM, KMEAN>();
+    else
+      velocity_curl<KERNEL, DIM, HMEAN>();
   }
-  if (cond) SPH_ASTRO_EVAL_VISC(true, true);
-  if (energy) SPH_ASTRO_EVAL_VISC(true, false);
-  SPH_ASTRO_EVAL_VISC(false, false);
-#undef SPH_ASTRO_EVAL_VISC
-#undef SPH_ASTRO_EVAL
+  comm_stage_ = Stage::DENSITY;
+  comm->forward_comm(this);
+  if (pressure_geometric_) {    // g = sqrt(P)/rho of owned and ghost atoms
+    const double *rho = eval_density();
+    const int nall = nlocal + atom->nghost;
+    for (int i = 0; i < nall; i++) pgeo_[i] = pressure_geometric_factor(pressure_[i], rho[i]);
+  }
+  switch (form) {
+    case GRADH:
+      dispatch_force<KERNEL, DIM, GRADH>();
+      break;
+    case KMEAN:
+      dispatch_force<KERNEL, DIM, KMEAN>();
+      break;
+    case HMEAN_GEOMETRIC:
+      dispatch_force<KERNEL, DIM, HMEAN_GEOMETRIC>();
+      break;
+    case KMEAN_GEOMETRIC:
+      dispatch_force<KERNEL, DIM, KMEAN_GEOMETRIC>();
+      break;
+    default:
+      dispatch_force<KERNEL, DIM, HMEAN>();
+  }
+  // drho_i/dt = sum_j m_j v_ij . grad_i W_ij (seed 004 eq. 33), integrated by fix sph/astro
+  if (density_continuity_) {
+    double *drhodt = atom->dvector[continuity_index_.drhodt];
+    for (int i = 0; i < nlocal; i++) drhodt[i] = vdotgradw_[i];
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -839,18 +893,21 @@ template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
      div v_i = -1/(Omega_i rho_i) sum_j m_j v_ij . grad_i W_ij
      curl v_i = 1/(Omega_i rho_i) sum_j m_j v_ij x grad_i W_ij      (Omega = 1 without GRADH)
      Balsara: f_i = |div v|_i / (|div v|_i + |curl v|_i + 0.0001 c_i / h_i)
-   over the full list and W(h_i) (GRADH) or the half list and W(h_ij). Costs one neighbour
-   loop and two communications, only when balsara is on or fix sph/astro/switch needs curl v.
+   over the full list and W(h_i) (GRADH) or the half list and W(h_ij) (HMEAN) or the
+   averaged (W(h_i) + W(h_j))/2 (KMEAN). Costs one neighbour loop and two communications,
+   only when balsara is on or fix sph/astro/switch needs curl v.
 ------------------------------------------------------------------------- */
 
-template <class KERNEL, int DIM, bool GRADH> void PairSPHAstro::velocity_curl()
+template <class KERNEL, int DIM, int KFORM> void PairSPHAstro::velocity_curl()
 {
   using K = Kernel<KERNEL, DIM>;
+  constexpr bool GH = KFORM == GRADH;
+  constexpr bool KM = KFORM == KMEAN;
   double **x = atom->x;
   const int *type = atom->type;
   const double *rmass = atom->rmass;
   const double *mass = atom->mass;
-  const double *rho = atom->dvector[state_.rho];
+  const double *rho = eval_density();
   const double *h = atom->dvector[state_.h];
   double **vest = atom->darray[state_.vest];
   const int nlocal = atom->nlocal;
@@ -862,8 +919,8 @@ template <class KERNEL, int DIM, bool GRADH> void PairSPHAstro::velocity_curl()
   comm_stage_ = Stage::VELOCITY;    // the ghosts' predicted velocities of this step
   comm->forward_comm(this, 3);
 
-  NeighList *nl = GRADH ? listfull_ : list;
-  const int nzero = (!GRADH && newton_pair) ? nall : nlocal;
+  NeighList *nl = GH ? listfull_ : list;
+  const int nzero = (!GH && newton_pair) ? nall : nlocal;
   for (int i = 0; i < nzero; i++) dcurl_[i][0] = dcurl_[i][1] = dcurl_[i][2] = dcurl_[i][3] = 0.0;
   for (int ii = 0; ii < nl->inum; ii++) {
     const int i = nl->ilist[ii];
@@ -877,11 +934,23 @@ template <class KERNEL, int DIM, bool GRADH> void PairSPHAstro::velocity_curl()
       const int j = jlist[jj] & NEIGHMASK;
       const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
       const double r2 = dx * dx + dy * dy + dz * dz;
-      const double hk = GRADH ? hi : 0.5 * (hi + h[j]);
-      if (r2 >= R2 * hk * hk || r2 == 0.0) continue;
-      const double r = std::sqrt(r2);
-      const double hinv = 1.0 / hk;
-      const double dw = sigma * inv_h_pow_dim<DIM>(hinv) * hinv * K::dw(r * hinv) / r;
+      double dw;    // (dW/dr) / r
+      if (KM) {
+        const double hj = h[j];
+        const double hR2i = R2 * hi * hi, hR2j = R2 * hj * hj;
+        if ((r2 >= hR2i && r2 >= hR2j) || r2 == 0.0) continue;
+        const double r = std::sqrt(r2);
+        const double hinvi = 1.0 / hi, hinvj = 1.0 / hj;
+        const double dwi = r2 < hR2i ? inv_h_pow_dim<DIM>(hinvi) * hinvi * K::dw(r * hinvi) : 0.0;
+        const double dwj = r2 < hR2j ? inv_h_pow_dim<DIM>(hinvj) * hinvj * K::dw(r * hinvj) : 0.0;
+        dw = 0.5 * sigma * (dwi + dwj) / r;
+      } else {
+        const double hk = GH ? hi : 0.5 * (hi + h[j]);
+        if (r2 >= R2 * hk * hk || r2 == 0.0) continue;
+        const double r = std::sqrt(r2);
+        const double hinv = 1.0 / hk;
+        dw = sigma * inv_h_pow_dim<DIM>(hinv) * hinv * K::dw(r * hinv) / r;
+      }
       const double mj = rmass ? rmass[j] : mass[type[j]];
       const double dvx = vest[i][0] - vest[j][0], dvy = vest[i][1] - vest[j][1],
                    dvz = vest[i][2] - vest[j][2];
@@ -889,17 +958,17 @@ template <class KERNEL, int DIM, bool GRADH> void PairSPHAstro::velocity_curl()
                               (dvz * dx - dvx * dz) * dw, (dvx * dy - dvy * dx) * dw};
       for (int k = 0; k < 4; k++) acc[k] += mj * pair[k];
       // the same pair seen from j: v_ji . grad_j W_ji = v_ij . grad_i W_ij, likewise for x
-      if (!GRADH && (newton_pair || j < nlocal))
+      if (!GH && (newton_pair || j < nlocal))
         for (int k = 0; k < 4; k++) dcurl_[j][k] += mi * pair[k];
     }
     for (int k = 0; k < 4; k++) dcurl_[i][k] += acc[k];
   }
-  if (!GRADH && newton_pair) {
+  if (!GH && newton_pair) {
     comm_stage_ = Stage::CURL;
     comm->reverse_comm(this, 4);
   }
   for (int i = 0; i < nlocal; i++) {
-    const double norm = 1.0 / ((GRADH ? omega_[i] : 1.0) * rho[i]);
+    const double norm = 1.0 / ((GH ? omega_[i] : 1.0) * rho[i]);
     const double divv = -dcurl_[i][0] * norm;
     const double curlv = norm *
         std::sqrt(dcurl_[i][1] * dcurl_[i][1] + dcurl_[i][2] * dcurl_[i][2] +
@@ -949,7 +1018,7 @@ void PairSPHAstro::compute(int eflag, int vflag)
 
 int PairSPHAstro::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, int * /*pbc*/)
 {
-  const double *rho = atom->dvector[state_.rho];
+  const double *rho = eval_density();
   const double *h = atom->dvector[state_.h];
   double **vest = atom->darray[state_.vest];
   int m = 0;
@@ -989,7 +1058,7 @@ int PairSPHAstro::pack_forward_comm(int n, int *list, double *buf, int /*pbc_fla
 
 void PairSPHAstro::unpack_forward_comm(int n, int first, double *buf)
 {
-  double *rho = atom->dvector[state_.rho];
+  double *rho = eval_density();
   double *h = atom->dvector[state_.h];
   double **vest = atom->darray[state_.vest];
   int m = 0;
@@ -1037,6 +1106,10 @@ int PairSPHAstro::pack_reverse_comm(int n, int first, double *buf)
       for (int k = 0; k < 4; k++) buf[m++] = dcurl_[i][k];
     return m;
   }
+  if (comm_stage_ == Stage::COUNT) {
+    for (int i = first; i < first + n; i++) buf[m++] = nneigh_[i];
+    return m;
+  }
   if (comm_stage_ == Stage::DENSITY) {
     const double *rho = atom->dvector[state_.rho];
     for (int i = first; i < first + n; i++) {
@@ -1065,6 +1138,10 @@ void PairSPHAstro::unpack_reverse_comm(int n, int *list, double *buf)
   if (comm_stage_ == Stage::CURL) {
     for (int k = 0; k < n; k++)
       for (int c = 0; c < 4; c++) dcurl_[list[k]][c] += buf[m++];
+    return;
+  }
+  if (comm_stage_ == Stage::COUNT) {
+    for (int k = 0; k < n; k++) nneigh_[list[k]] += buf[m++];
     return;
   }
   if (comm_stage_ == Stage::DENSITY) {
@@ -1117,18 +1194,27 @@ void PairSPHAstro::write_restart_settings(FILE *fp)
   fwrite(ival, sizeof(int), 3, fp);
   fwrite(dval, sizeof(double), 7, fp);
   fwrite(&cond_kappa_, sizeof(double), 1, fp);    // physical heat conduction
+  // the seeds' other choices: density continuity, symmetrise kernel, pressure geometric
+  const int options =
+      (density_continuity_ ? 1 : 0) + (symmetrise_kernel_ ? 2 : 0) + (pressure_geometric_ ? 4 : 0);
+  fwrite(&options, sizeof(int), 1, fp);
 }
 
 void PairSPHAstro::read_restart_settings(FILE *fp)
 {
-  int ival[3];
+  int ival[3], options = 0;
   double dval[7];
   if (comm->me == 0) {
     utils::sfread(FLERR, ival, sizeof(int), 3, fp, nullptr, error);
     utils::sfread(FLERR, dval, sizeof(double), 7, fp, nullptr, error);
     utils::sfread(FLERR, &cond_kappa_, sizeof(double), 1, fp, nullptr, error);
+    utils::sfread(FLERR, &options, sizeof(int), 1, fp, nullptr, error);
   }
   MPI_Bcast(&cond_kappa_, 1, MPI_DOUBLE, 0, world);
+  MPI_Bcast(&options, 1, MPI_INT, 0, world);
+  density_continuity_ = (options & 1) != 0;
+  symmetrise_kernel_ = (options & 2) != 0;
+  pressure_geometric_ = (options & 4) != 0;
   MPI_Bcast(ival, 3, MPI_INT, 0, world);
   MPI_Bcast(dval, 7, MPI_DOUBLE, 0, world);
   kernel_ = static_cast<KernelType>(ival[0]);
@@ -1152,7 +1238,8 @@ void PairSPHAstro::read_restart_settings(FILE *fp)
    ghost, into the collection whose upper cutoff covers atom2cut(i), and searches collection
    pairs (a, b) out to radii2cut(cut_a/2, cut_b/2) + skin. Small-h particles then only scan
    stencils sized for small h, however large h is elsewhere; the per-type cutoff stays an
-   upper bound. The pair kernels reach R max(h_i, h_j) (grad-h: W(h_i), W(h_j)) or
+   upper bound. The pair kernels reach R max(h_i, h_j) (grad-h or symmetrise kernel: W(h_i),
+   W(h_j)) or
    R (h_i + h_j)/2 (mean h_ij), R the kernel radius.
 ------------------------------------------------------------------------- */
 
@@ -1167,7 +1254,7 @@ double PairSPHAstro::atom2cut(int i)
 
 double PairSPHAstro::radii2cut(double ri, double rj)
 {
-  return hmode_ == HMode::GRADH ? 2.0 * MAX(ri, rj) : ri + rj;
+  return (hmode_ == HMode::GRADH || symmetrise_kernel_) ? 2.0 * MAX(ri, rj) : ri + rj;
 }
 
 double PairSPHAstro::h_limit(int i) const
@@ -1195,7 +1282,9 @@ void *PairSPHAstro::extract_peratom(const char *name, int &ncol)
   if (strcmp(name, "pressure") == 0) return (void *) pressure_;
   if (strcmp(name, "soundspeed") == 0) return (void *) soundspeed_;
   if (strcmp(name, "divv") == 0) return (void *) divv_;
-  if (strcmp(name, "nneigh") == 0) return (void *) nneigh_;
+  // current unless density continuity skipped the summation (see neighbour_counts())
+  if (strcmp(name, "nneigh") == 0)
+    return counts_step_ == computed_step_ ? (void *) nneigh_ : nullptr;
   if (strcmp(name, "omega") == 0) return (void *) omega_;
   if (strcmp(name, "curlv") == 0) return (void *) (curl_on_ ? curlv_ : nullptr);
   if (strcmp(name, "vsigmax") == 0) return (void *) (signal_viscosity() ? vsigmax_ : nullptr);
@@ -1207,5 +1296,6 @@ void *PairSPHAstro::extract_peratom(const char *name, int &ncol)
 
 double PairSPHAstro::memory_usage()
 {
-  return 6.0 * nmax_ * sizeof(double) + conduct_nmax_ * sizeof(double) + Pair::memory_usage();
+  return (6.0 + (pgeo_ ? 1.0 : 0.0)) * nmax_ * sizeof(double) + conduct_nmax_ * sizeof(double) +
+      Pair::memory_usage();
 }

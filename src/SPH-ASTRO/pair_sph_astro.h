@@ -72,6 +72,17 @@ class PairSPHAstro : public Pair {
   static constexpr double COLLECTION_GROWTH = 1.2;
   // physical heat conduction (pair_sph_astro_conduction.cpp): kappa = k / c_v, 0 when off
   double conduction_kappa() const { return cond_kappa_; }
+  // density continuity: rho integrated by fix sph/astro (d_rho), the force evaluation uses
+  // the prediction d_rhoest; density summation: both are d_rho
+  bool density_continuity() const { return density_continuity_; }
+  bool symmetrise_kernel() const { return symmetrise_kernel_; }
+  bool pressure_geometric() const { return pressure_geometric_; }
+  // the density of the latest (or current) force evaluation, owned and ghost atoms
+  double *eval_density() const;
+  // neighbours inside the kernel support of the latest force evaluation (owned atoms). With
+  // density continuity there is no summation pass to count them: the first call after a force
+  // evaluation counts in a pass of its own (collective: call on all ranks, as computes are)
+  const double *neighbour_counts();
 
  protected:
   SPHAstro::KernelType kernel_ = SPHAstro::KernelType::CUBIC;
@@ -83,6 +94,19 @@ class PairSPHAstro : public Pair {
   bool balsara_on_ = false;     // Balsara shear limiter of the viscosity
   bool visc_signal_ = false;    // signal-velocity form (Monaghan 1997) instead of classic
   bool curl_on_ = false;        // curl v needed this run (Balsara or Cullen-Dehnen switch)
+
+  // the seeds' other choices (fixed h and dh/dt only; doc/pair_sph_astro.rst):
+  //   density continuity: drho_i/dt = sum_j m_j v_ij . grad_i W_ij (seed 004 eq. 33),
+  //                       integrated by fix sph/astro, instead of the summation
+  //   symmetrise kernel:  W_ij = (W(r_ij, h_i) + W(r_ij, h_j))/2 instead of W(r_ij, h_ij)
+  //   pressure geometric: 2 sqrt(P_i P_j)/(rho_i rho_j) instead of P_i/rho_i^2 + P_j/rho_j^2
+  //                       (both seed 000, "alternative ways to force anti-symmetry")
+  bool density_continuity_ = false;
+  bool symmetrise_kernel_ = false;
+  bool pressure_geometric_ = false;
+  SPHAstro::ContinuityIndex continuity_index_;
+  bigint counts_step_ = -1;    // step whose force evaluation nneigh_ was counted in
+  double *pgeo_ = nullptr;     // pressure geometric: sqrt(P)/rho (owned + ghost)
 
   // physical heat conduction (pair_sph_astro_conduction.cpp): a separate pass after the
   // force pass, only when kappa > 0; conduct_ holds this step's du/dt from it (owned + ghost)
@@ -130,7 +154,7 @@ class PairSPHAstro : public Pair {
   bigint computed_step_ = -1;
   int computed_nlocal_ = -1;
 
-  enum class Stage { DENSITY, FORCE, SMOOTHING_LENGTH, VELOCITY, CURL, CONDUCTION };
+  enum class Stage { DENSITY, FORCE, SMOOTHING_LENGTH, VELOCITY, CURL, CONDUCTION, COUNT };
   Stage comm_stage_ = Stage::DENSITY;
 
   void allocate();
@@ -139,16 +163,39 @@ class PairSPHAstro : public Pair {
   enum ViscosityForm { NO_VISCOSITY = 0, CLASSIC = 1, BALSARA = 2, SIGNAL = 3, SIGNAL_BALSARA = 4 };
   static constexpr bool visc_balsara(int v) { return v == BALSARA || v == SIGNAL_BALSARA; }
   static constexpr bool visc_signal(int v) { return v == SIGNAL || v == SIGNAL_BALSARA; }
-  template <class KERNEL, int DIM, bool ENERGY, int VISC, bool COND> void eval();
-  template <class KERNEL, int DIM, bool ENERGY, int VISC, bool COND> void eval_gradh();
-  template <class KERNEL, int DIM, bool GRADH> void velocity_curl();
+  // pair forms of the force pass (template parameter FORM): how W_ij is symmetrised and how
+  // the pressure term is; grad-h terms come with their own kernels and the standard pressure
+  enum PairForm {
+    HMEAN = 0,              // W(r_ij, h_ij), P_i/rho_i^2 + P_j/rho_j^2
+    GRADH = 1,              // W(h_i), W(h_j) with grad-h factors (fix sph/astro/h iterate)
+    KMEAN = 2,              // (W(h_i) + W(h_j))/2, P_i/rho_i^2 + P_j/rho_j^2
+    HMEAN_GEOMETRIC = 3,    // W(r_ij, h_ij), 2 sqrt(P_i P_j)/(rho_i rho_j)
+    KMEAN_GEOMETRIC = 4     // (W(h_i) + W(h_j))/2, 2 sqrt(P_i P_j)/(rho_i rho_j)
+  };
+  static constexpr bool form_gradh(int f) { return f == GRADH; }
+  static constexpr bool form_kmean(int f) { return f == KMEAN || f == KMEAN_GEOMETRIC; }
+  static constexpr bool form_geometric(int f)
+  {
+    return f == HMEAN_GEOMETRIC || f == KMEAN_GEOMETRIC;
+  }
+  // the kernel part of a form alone (velocity_curl): HMEAN, GRADH or KMEAN
+  static constexpr int kernel_form(int f)
+  {
+    return form_gradh(f) ? GRADH : (form_kmean(f) ? KMEAN : HMEAN);
+  }
+  int pair_form() const;
+  template <class KERNEL, int DIM, int KFORM> void velocity_curl();
+  template <class KERNEL, int DIM, bool KM> void density_sum();
   template <class KERNEL, int DIM> void density_gradh();
-  template <class KERNEL, int DIM, bool GRADH, bool ENERGY, int VISC, bool COND> void force_pass();
+  void count_neighbours();
+  template <class KERNEL, int DIM, int FORM, bool ENERGY, int VISC, bool COND> void force_pass();
+  template <class KERNEL, int DIM, int FORM> void dispatch_force();
   template <class KERNEL, int DIM> void dispatch_physics();
   template <class KERNEL> void dispatch_dimension();
   void equation_of_state();
   // dA/dt from the dissipative heating (entropy formulation), then du/dt = heating + P dV
-  void finish_thermal_rates(bool gradh);
+  // (with pressure geometric the P dV part is summed pair by pair in the force pass)
+  void finish_thermal_rates(bool gradh, bool pdv_done);
 };
 
 }    // namespace LAMMPS_NS

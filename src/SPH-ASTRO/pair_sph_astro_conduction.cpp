@@ -6,7 +6,8 @@
 // without conduction do not pay for it. Pair term and its sources: sph_astro_conduction.h
 //   du_i/dt += sum_j m_j (kappa_i + kappa_j) (u_i - u_j) / (rho_i rho_j) (dW/dr)_ij / r_ij
 // over the half list, with (dW/dr)_ij at h_ij = (h_i + h_j)/2 (fixed h, dh/dt) or the mean
-// of dW/dr at h_i and h_j (variable h with grad-h terms): symmetric in i and j, so each pair
+// of dW/dr at h_i and h_j (variable h with grad-h terms, or symmetrise kernel): symmetric in
+// i and j, so each pair
 // conserves sum m u exactly. u is the predicted u_est of the end of the step (ghost values
 // arrive with the density-stage forward communication). With the entropy formulation the
 // rate goes to dA/dt = (gamma - 1) rho^(1-gamma) du/dt as well.
@@ -41,7 +42,7 @@ template <class KERNEL, int DIM, bool GRADH> void PairSPHAstro::conduction_loop(
   const int *type = atom->type;
   const double *rmass = atom->rmass;
   const double *mass = atom->mass;
-  const double *rho = atom->dvector[state_.rho];
+  const double *rho = eval_density();    // the density of this force evaluation
   const double *h = atom->dvector[state_.h];
   const double *uest = atom->dvector[state_.uest];
   const int nlocal = atom->nlocal;
@@ -105,7 +106,8 @@ void PairSPHAstro::conduction_pass()
     memory->destroy(conduct_);
     memory->create(conduct_, conduct_nmax_, "pair:sph/astro:conduct");
   }
-  const bool gradh = hmode_ == HMode::GRADH;
+  // the mean of dW/dr at h_i and h_j: grad-h terms or the averaged kernel
+  const bool gradh = hmode_ == HMode::GRADH || symmetrise_kernel_;
   const bool d2 = domain->dimension == 2;
 #define SPH_ASTRO_COND(KT)                                                    \
   {                                                                           \
@@ -137,7 +139,7 @@ void PairSPHAstro::conduction_pass()
   double *dudt = atom->dvector[state_.dudt];
   for (int i = 0; i < nlocal; i++) dudt[i] += conduct_[i];
   if (entropy_) {
-    const double *rho = atom->dvector[state_.rho];
+    const double *rho = eval_density();
     double *dAdt = atom->dvector[entropy_index_.dAdt];
     const double g1 = eos_.gamma - 1.0;
     for (int i = 0; i < nlocal; i++) dAdt[i] += g1 * std::pow(rho[i], -g1) * conduct_[i];

@@ -91,4 +91,34 @@ void ensure_entropy_state(LAMMPS *lmp, const char *caller)
                        " all property/atom d_entropy d_entropy_est d_dentropy");
 }
 
+bool find_continuity_state(LAMMPS *lmp, ContinuityIndex &idx)
+{
+  int flag, cols;
+  idx.rhoest = lmp->atom->find_custom("rhoest", flag, cols);
+  if (idx.rhoest < 0 || flag != 1 || cols != 0) return false;
+  idx.drhodt = lmp->atom->find_custom("drhodt", flag, cols);
+  if (idx.drhodt < 0 || flag != 1 || cols != 0) return false;
+  return true;
+}
+
+void ensure_continuity_state(LAMMPS *lmp, const char *caller)
+{
+  ContinuityIndex idx;
+  if (lmp->modify->get_fix_by_id(CONTINUITY_FIX_ID)) {
+    if (!find_continuity_state(lmp, idx))
+      lmp->error->all(FLERR, "{}: fix {} exists but does not hold d_rhoest d_drhodt", caller,
+                      CONTINUITY_FIX_ID);
+    return;
+  }
+  int flag, cols;
+  for (const char *name : {"rhoest", "drhodt"})
+    if (lmp->atom->find_custom(name, flag, cols) >= 0)
+      lmp->error->all(FLERR,
+                      "{}: a custom per-atom property d_{} already exists outside fix {}; "
+                      "SPH-ASTRO owns the names d_rhoest d_drhodt",
+                      caller, name, CONTINUITY_FIX_ID);
+  lmp->modify->add_fix(std::string(CONTINUITY_FIX_ID) +
+                       " all property/atom d_rhoest d_drhodt ghost yes");
+}
+
 }    // namespace SPHAstro

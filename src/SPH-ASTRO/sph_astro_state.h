@@ -56,6 +56,18 @@ struct EntropyIndex {
 void ensure_entropy_state(LAMMPS_NS::LAMMPS *lmp, const char *caller);
 bool find_entropy_state(LAMMPS_NS::LAMMPS *lmp, EntropyIndex &idx);
 
+// Density by the continuity equation (pair_style sph/astro density continuity): d_rho is
+// integrated in time by fix sph/astro like u; the force evaluation uses the prediction. Both
+// live in their own fix property/atom SPH_ASTRO_CONTINUITY, created only for such scenes:
+//   d_rhoest   rho predicted to the end of the step     (set by fix sph/astro)
+//   d_drhodt   drho/dt = sum_j m_j v_ij . grad_i W_ij   (computed by pair sph/astro)
+constexpr const char *CONTINUITY_FIX_ID = "SPH_ASTRO_CONTINUITY";
+struct ContinuityIndex {
+  int rhoest = -1, drhodt = -1;
+};
+void ensure_continuity_state(LAMMPS_NS::LAMMPS *lmp, const char *caller);
+bool find_continuity_state(LAMMPS_NS::LAMMPS *lmp, ContinuityIndex &idx);
+
 }    // namespace SPHAstro
 
 #endif

@@ -1,0 +1,374 @@
+// LAMMPS-driven tests of the seeds' other choices of pair_style sph/astro (issue 3):
+// density continuity (rho integrated by fix sph/astro, seed 004 eq. 33), symmetrise kernel
+// and pressure geometric (seed 000, "alternative ways to force anti-symmetry"): uniform
+// motion, conservation, energy error order, restart (settings and bit-for-bit continuation),
+// neighbour counts, and the errors for bad values and combinations. The Sod figures of the
+// options are ctests (sod_short_options_*).
+
+#include "lammps_fixture.h"
+
+#include "fix.h"
+#include "force.h"
+#include "modify.h"
+#include "pair.h"
+
+#include <cmath>
+#include <cstdio>
+
+using namespace sph_astro_test;
+using LAMMPS_NS::LAMMPS;
+
+namespace {
+enum { MASS, PX, PY, PZ, LX, LY, LZ, EKIN, ETHERM, EPOT, ETOT, DEREL };
+const std::string GAS = "sph/astro kernel m4 eos ideal $(5.0/3.0) viscosity classic 1.0 2.0";
+}    // namespace
+
+// GetParam(): the option keywords appended to GAS
+class PairOption : public ::testing::TestWithParam<std::string> {};
+
+// smoothing lengths varying by +-25 % from particle to particle, so that W(h_ij) and the
+// averaged kernel differ (with equal h they coincide)
+static void vary_h(const std::unique_ptr<LAMMPS> &lmp)
+{
+  commands(lmp,
+           {"variable hvary atom " + num(1.2 * std::cbrt(0.25)) + "*(1.0+0.25*random(-1,1,5077))",
+            "set group all d_h v_hvary"});
+}
+
+// ---------------------------------------------------------------- uniform motion
+
+TEST(DensityContinuity, UniformMotionLeavesTheDensityUnchanged)
+{
+  // perfect periodic fcc lattice, uniform u, uniform velocity: v_ij = 0 for every pair, so
+  // drho/dt = sum_j m_j v_ij . grad W_ij vanishes exactly (seed 004 eq. 33; eq. 29 would not)
+  for (const std::string hfix : {"", "fix hvar all sph/astro/h dhdt"}) {
+    auto lmp = open_lammps();
+    gas(lmp, "box", 3, GAS + " density continuity", "sph/astro", 1.0, 0.0);
+    if (!hfix.empty()) commands(lmp, {hfix});
+    commands(lmp, {"set group all d_u 1.0", "velocity all set 0.7 -0.4 0.2", "run 0"});
+    const auto rho0 = per_atom(lmp, "rho");
+    commands(lmp, {"run 50"});
+    const auto rho = per_atom(lmp, "rho");
+    const auto drhodt = per_atom(lmp, "drhodt");
+    const auto vx = per_atom(lmp, "v", 0);
+    double worst = 0.0, worst_rate = 0.0;
+    for (const auto &[id, r] : rho0) {
+      worst = std::max(worst, std::fabs(rho.at(id) / r - 1.0));
+      worst_rate = std::max(worst_rate, std::fabs(drhodt.at(id)));
+      EXPECT_NEAR(vx.at(id), 0.7, 1e-12) << "atom " << id;
+    }
+    printf("uniform motion (%s): largest |rho/rho0 - 1| %.2e, largest |drho/dt| %.2e after 50 "
+           "steps\n",
+           hfix.empty() ? "fixed h" : "dhdt", worst, worst_rate);
+    EXPECT_LT(worst, 1e-13);
+    EXPECT_LT(worst_rate, 1e-12);
+  }
+}
+
+TEST(DensityContinuity, StartsFromOneSummationAndThenIntegrates)
+{
+  // the first force evaluation sums rho (any d_rho set before is overwritten); afterwards the
+  // integrated rho departs from the summed one only by the truncation error of the scheme
+  std::map<int, double> rho_sum, rho_cont;
+  for (const std::string density : {"summation", "continuity"}) {
+    auto lmp = open_lammps();
+    gas(lmp, "box", 3, GAS + " density " + density, "sph/astro dt fixed");
+    commands(
+        lmp,
+        {"set group all d_rho 123.0", "velocity all create 0.5 4928459 dist gaussian", "run 0"});
+    const auto rho_start = per_atom(lmp, "rho");
+    for (const auto &[id, r] : rho_start) EXPECT_LT(std::fabs(r - 1.0), 0.1) << "atom " << id;
+    if (density == "continuity") {
+      const auto rhoest = per_atom(lmp, "rhoest");
+      for (const auto &[id, r] : rho_start) EXPECT_EQ(rhoest.at(id), r);
+    }
+    commands(lmp, {"timestep 0.002", "run 50"});
+    (density == "summation" ? rho_sum : rho_cont) = per_atom(lmp, "rho");
+  }
+  double worst = 0.0, mean_change = 0.0;
+  for (const auto &[id, r] : rho_sum) {
+    worst = std::max(worst, std::fabs(rho_cont.at(id) / r - 1.0));
+    mean_change += std::fabs(r - 1.0) / rho_sum.size();
+  }
+  printf("continuity vs summation after t = 0.1: largest relative difference %.3e (mean "
+         "|rho - 1| %.3e)\n",
+         worst, mean_change);
+  EXPECT_GT(worst, 0.0);
+  EXPECT_LT(worst, 0.05);
+}
+
+// ---------------------------------------------------------------- conservation
+
+TEST_P(PairOption, ForcesAreAntisymmetricAndMomentumIsConserved)
+{
+  auto lmp = open_lammps();
+  gas(lmp, "ball", 6, GAS + " " + GetParam(), "sph/astro courant 0.3");
+  vary_h(lmp);
+  commands(lmp, {"velocity all zero linear", "velocity all zero angular", "run 0"});
+  double fsum[3] = {0, 0, 0}, fabs_sum = 0;
+  for (int i = 0; i < lmp->atom->nlocal; i++)
+    for (int d = 0; d < 3; d++) {
+      fsum[d] += lmp->atom->f[i][d];
+      fabs_sum += std::fabs(lmp->atom->f[i][d]);
+    }
+  ASSERT_GT(fabs_sum, 0.0);
+  for (double fd : fsum) EXPECT_LT(std::fabs(fd), 1e-13 * fabs_sum);
+  const auto start = global_vector(lmp, "sum", 12);
+  commands(lmp, {"run 200"});
+  const auto end = global_vector(lmp, "sum", 12);
+  double pscale = 0;
+  for (int i = 0; i < lmp->atom->nlocal; i++)
+    pscale += 0.25 *
+        std::sqrt(lmp->atom->v[i][0] * lmp->atom->v[i][0] +
+                  lmp->atom->v[i][1] * lmp->atom->v[i][1] +
+                  lmp->atom->v[i][2] * lmp->atom->v[i][2]);
+  ASSERT_GT(pscale, 0.0);
+  for (int k : {PX, PY, PZ}) EXPECT_LT(std::fabs(end[k] - start[k]), 1e-12 * pscale) << k;
+  for (int k : {LX, LY, LZ}) EXPECT_LT(std::fabs(end[k] - start[k]), 1e-11 * pscale) << k;
+  EXPECT_DOUBLE_EQ(end[MASS], start[MASS]);
+  EXPECT_GT(end[EKIN], 10 * start[EKIN]);    // the ball expands
+  EXPECT_LT(std::fabs(end[DEREL]), 1e-3);
+}
+
+// relative total energy error of an expanding ball after t = 0.4 with fixed dt
+static double energy_error(double dt, const std::string &options, const std::string &hfix = "")
+{
+  auto lmp = open_lammps();
+  gas(lmp, "ball", 6, GAS + " " + options, "sph/astro dt fixed");
+  vary_h(lmp);
+  if (!hfix.empty()) commands(lmp, {hfix});
+  const int nsteps = static_cast<int>(std::lround(0.4 / dt));
+  commands(
+      lmp,
+      {"timestep " + num(dt), "thermo " + std::to_string(nsteps), "run " + std::to_string(nsteps)});
+  return std::fabs(global_vector(lmp, "sum", 12)[DEREL]);
+}
+
+TEST_P(PairOption, EnergyErrorIsSecondOrderInTimestep)
+{
+  // the pair terms conserve energy exactly; what remains is the leapfrog's error ~ dt^2
+  for (const std::string hfix : {"", "fix hvar all sph/astro/h dhdt margin 2.0"}) {
+    const double e1 = energy_error(0.02, GetParam(), hfix),
+                 e2 = energy_error(0.01, GetParam(), hfix),
+                 e3 = energy_error(0.005, GetParam(), hfix);
+    printf("%s%s: energy error dt 0.02 %.3e, 0.01 %.3e, 0.005 %.3e (ratios %.2f %.2f)\n",
+           GetParam().c_str(), hfix.empty() ? "" : ", dhdt", e1, e2, e3, e1 / e2, e2 / e3);
+    ASSERT_GT(e3, 0.0);
+    EXPECT_LT(e1, 1e-2);
+    EXPECT_NEAR(e1 / e2, 4.0, 1.0);
+    EXPECT_NEAR(e2 / e3, 4.0, 1.0);
+  }
+}
+
+// ---------------------------------------------------------------- restart
+
+TEST_P(PairOption, RestartContinuesBitForBit)
+{
+  // the pair settings come back from the restart file (no pair_style after read_restart);
+  // with density continuity also the integrated rho and its prediction d_rhoest
+  const std::string restart = "test_pair_options.restart";
+  std::map<int, double> x_ref, v_ref, u_ref, rho_ref;
+  {
+    auto lmp = open_lammps();
+    gas(lmp, "box", 3, GAS + " " + GetParam(), "sph/astro courant 0.3");
+    vary_h(lmp);
+    commands(lmp,
+             {"fix hvar all sph/astro/h dhdt", "velocity all create 0.5 4928459", "run 20",
+              "write_restart " + restart, "run 20"});
+    x_ref = per_atom(lmp, "x", 0);
+    v_ref = per_atom(lmp, "v", 1);
+    u_ref = per_atom(lmp, "u");
+    rho_ref = per_atom(lmp, "rho");
+  }
+  auto lmp = open_lammps();
+  commands(lmp,
+           {"read_restart " + restart, "fix gas all sph/astro courant 0.3",
+            "fix hvar all sph/astro/h dhdt",
+            "neighbor " + num(0.3 * 1.2 * std::cbrt(0.25)) + " bin",
+            "neigh_modify every 1 delay 0 check yes", "run 20"});
+  auto x = per_atom(lmp, "x", 0);
+  auto v = per_atom(lmp, "v", 1);
+  auto u = per_atom(lmp, "u");
+  auto rho = per_atom(lmp, "rho");
+  ASSERT_EQ(x.size(), x_ref.size());
+  for (const auto &[id, value] : x_ref) {
+    EXPECT_EQ(x[id], value) << "atom " << id;
+    EXPECT_EQ(v[id], v_ref[id]) << "atom " << id;
+    EXPECT_EQ(u[id], u_ref[id]) << "atom " << id;
+    EXPECT_EQ(rho[id], rho_ref[id]) << "atom " << id;
+  }
+  std::remove(restart.c_str());
+}
+
+INSTANTIATE_TEST_SUITE_P(PairSPHAstro, PairOption,
+                         ::testing::Values("", "density continuity", "symmetrise kernel",
+                                           "pressure geometric",
+                                           "density continuity symmetrise kernel pressure "
+                                           "geometric"));
+
+TEST(PairOptions, SettingsComeBackFromARestartFile)
+{
+  // each option refuses fix sph/astro/h iterate at init: after read_restart without a new
+  // pair_style that error shows that the setting was restored
+  const std::string restart = "test_pair_options_settings.restart";
+  for (const std::string option :
+       {"density continuity", "symmetrise kernel", "pressure geometric", ""}) {
+    {
+      auto lmp = open_lammps();
+      gas(lmp, "box", 2, GAS + " " + option, "sph/astro");
+      commands(lmp, {"run 2", "write_restart " + restart});
+    }
+    auto lmp = open_lammps();
+    commands(
+        lmp,
+        {"read_restart " + restart, "fix gas all sph/astro", "fix hvar all sph/astro/h iterate"});
+    const std::string message = error_of(lmp, "run 0");
+    if (option.empty())
+      EXPECT_EQ(message, "");
+    else
+      EXPECT_NE(message.find("pair_style sph/astro " + option +
+                             " needs fixed h or fix "
+                             "sph/astro/h dhdt"),
+                std::string::npos)
+          << option << ": " << message;
+  }
+  std::remove(restart.c_str());
+}
+
+TEST(DensityContinuity, DataFileRoundTrip)
+{
+  // write_data adds the section SPH_ASTRO_CONTINUITY; read back with its fix defined first
+  const std::string data = "test_pair_options.data";
+  std::map<int, double> h_ref;
+  {
+    auto lmp = open_lammps();
+    gas(lmp, "box", 2, GAS + " density continuity", "sph/astro");
+    commands(lmp, {"run 5", "write_data " + data});
+    h_ref = per_atom(lmp, "h");
+  }
+  auto lmp = open_lammps();
+  commands(lmp,
+           {"units lj", "atom_style atomic", "atom_modify map array", "sph/astro/state",
+            "fix SPH_ASTRO_CONTINUITY all property/atom d_rhoest d_drhodt ghost yes",
+            "read_data " + data +
+                " fix SPH_ASTRO_STATE NULL SPH_ASTRO_STATE fix SPH_ASTRO_CONTINUITY NULL "
+                "SPH_ASTRO_CONTINUITY",
+            "pair_style " + GAS + " density continuity", "pair_coeff * *", "fix gas all sph/astro",
+            "run 0"});
+  const auto h = per_atom(lmp, "h");
+  const auto rho = per_atom(lmp, "rho");
+  ASSERT_EQ(h.size(), h_ref.size());
+  for (const auto &[id, value] : h_ref) {
+    EXPECT_EQ(h.at(id), value);
+    EXPECT_GT(rho.at(id), 0.5);
+  }
+  std::remove(data.c_str());
+}
+
+// ---------------------------------------------------------------- per-atom output
+
+TEST(DensityContinuity, NeighbourCountsMatchTheSummation)
+{
+  // without a summation pass the counts of compute sph/astro/atom come from a pass of their own
+  for (const std::string sym : {"hmean", "kernel"}) {
+    std::map<int, double> counts[2];
+    int k = 0;
+    for (const std::string density : {"summation", "continuity"}) {
+      auto lmp = open_lammps();
+      gas(lmp, "box", 3, GAS + " symmetrise " + sym + " density " + density, "sph/astro");
+      vary_h(lmp);
+      // the first run sums rho in both cases; the second one of continuity counts by itself
+      commands(lmp, {"compute n all sph/astro/atom nneigh", "run 0", "run 0"});
+      auto *n = static_cast<double *>(
+          lammps_extract_compute(lmp.get(), "n", LMP_STYLE_ATOM, LMP_TYPE_VECTOR));
+      ASSERT_NE(n, nullptr);
+      for (int i = 0; i < lmp->atom->nlocal; i++) counts[k][lmp->atom->tag[i]] = n[i];
+      k++;
+    }
+    ASSERT_FALSE(counts[0].empty());
+    double total = 0.0;
+    for (const auto &[id, n] : counts[0]) {
+      EXPECT_EQ(counts[1].at(id), n) << "atom " << id;
+      total += n;
+    }
+    printf("symmetrise %s: mean neighbour count %.2f\n", sym.c_str(), total / counts[0].size());
+  }
+}
+
+// ---------------------------------------------------------------- bad input
+
+class BadOptionInput : public ::testing::Test {
+ protected:
+  std::unique_ptr<LAMMPS> lmp;
+  void SetUp() override
+  {
+    lmp = open_lammps();
+    commands(lmp,
+             {"units lj", "atom_style atomic", "atom_modify map array", "lattice fcc 4.0",
+              "region box block 0 2 0 2 0 2", "create_box 1 box", "create_atoms 1 box",
+              "mass 1 0.25"});
+  }
+  void expect_error(const std::string &line, const std::string &fragment)
+  {
+    const std::string message = error_of(lmp, line);
+    EXPECT_NE(message.find(fragment), std::string::npos)
+        << "command: " << line << "\nmessage: " << message << "\nexpected: " << fragment;
+  }
+  void setup_with(const std::string &options, const std::string &fix = "sph/astro")
+  {
+    commands(lmp,
+             {"pair_style " + GAS + " " + options, "pair_coeff * *", "fix gas all " + fix,
+              "set group all d_h 0.75", "set group all d_u 1.0"});
+  }
+};
+
+TEST_F(BadOptionInput, KeywordValuesNameTheStyleTheValueAndTheChoices)
+{
+  expect_error("pair_style sph/astro density sum",
+               "pair_style sph/astro: unknown density 'sum'; allowed: summation, continuity");
+  expect_error("pair_style sph/astro symmetrise average",
+               "pair_style sph/astro: unknown symmetrise 'average'; allowed: hmean, kernel");
+  expect_error("pair_style sph/astro pressure mean",
+               "pair_style sph/astro: unknown pressure 'mean'; allowed: standard, geometric");
+  expect_error("pair_style sph/astro density", "Illegal pair_style sph/astro density");
+  expect_error("pair_style sph/astro symmetrise", "Illegal pair_style sph/astro symmetrise");
+  expect_error("pair_style sph/astro pressure", "Illegal pair_style sph/astro pressure");
+  expect_error("pair_style sph/astro symmetrize kernel",
+               "unknown keyword 'symmetrize'; allowed: kernel, eos, viscosity, balsara, "
+               "conductivity, conduction, epsilon, density, symmetrise, pressure");
+}
+
+TEST_F(BadOptionInput, OptionsNeedFixedOrDhdtSmoothingLengths)
+{
+  setup_with("density continuity");
+  commands(lmp, {"fix hvar all sph/astro/h iterate"});
+  expect_error("run 0",
+               "pair_style sph/astro density continuity needs fixed h or fix sph/astro/h dhdt: "
+               "with fix sph/astro/h iterate h follows from the summed density");
+  commands(lmp, {"pair_style " + GAS + " symmetrise kernel"});
+  expect_error("run 0",
+               "pair_style sph/astro symmetrise kernel needs fixed h or fix "
+               "sph/astro/h dhdt");
+  commands(lmp, {"pair_style " + GAS + " pressure geometric"});
+  expect_error("run 0",
+               "pair_style sph/astro pressure geometric needs fixed h or fix "
+               "sph/astro/h dhdt");
+  commands(lmp, {"unfix hvar", "run 0"});    // fine with fixed h
+}
+
+TEST_F(BadOptionInput, GeometricPressureNeedsTheEnergyEquation)
+{
+  setup_with("pressure geometric", "sph/astro thermal entropy");
+  expect_error("run 0",
+               "pair_style sph/astro pressure geometric needs fix sph/astro thermal "
+               "energy");
+}
+
+int main(int argc, char **argv)
+{
+  MPI_Init(&argc, &argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  const int rc = RUN_ALL_TESTS();
+  MPI_Finalize();
+  return rc;
+}
