@@ -704,6 +704,21 @@ TEST(FixSPHAstro, ThermoReportsTheStepThatReachesTend)
   EXPECT_EQ(compute->invoked_vector, lmp->update->ntimestep);
 }
 
+TEST(FixSPHAstro, ThermoReportsTheStepThatReachesTendWithAFixEvaluatedEveryStep)
+{
+  // fix vector clears the computes' invoked flags every step (Modify::clearstep_compute):
+  // the final thermo's compute must still have its energy tallied (was: "energy was not
+  // tallied on step N", examples/noh/in.noh)
+  auto lmp = open_lammps();
+  gas(lmp, "box", 3, PAIR, "sph/astro tend 0.3");
+  commands(lmp, {"variable one equal 1", "fix every all vector 1 v_one", "thermo 1000",
+                 "run 100000"});
+  EXPECT_GT(lmp->update->ntimestep, 2);
+  auto *compute = lmp->modify->get_compute_by_id("sum");
+  ASSERT_NE(compute, nullptr);
+  EXPECT_EQ(compute->invoked_vector, lmp->update->ntimestep);
+}
+
 TEST(FixSPHAstro, OnlyOneInstance)
 {
   auto lmp = open_lammps();
