@@ -364,6 +364,9 @@ uint64_t FixSPHAstro::hash_velocity_energy() const
 // clearstep_compute(), which any fix evaluated every step (fix vector, fix ave/time) calls
 void FixSPHAstro::schedule_output(bigint step)
 {
+  // Output::write() of the current step (after end_of_step) re-schedules thermo at
+  // MIN(step + thermo every, laststep): the run's last step is now this one
+  if (update->laststep > step) update->laststep = step;
   if (output->next_thermo > step) {
     output->next_thermo = step;
     output->next = MIN(output->next, step);
