@@ -31,7 +31,9 @@ resolution variable, dump variable, default resolutions, analysis function, erro
 
 ``--variants physics`` runs the scene's own set of physics variants (Sod: fixed h with hfact
 1.5, variable h, variable h with the Morris-Monaghan or the Cullen-Dehnen switch, and the
-signal-velocity viscosity with Cullen-Dehnen; Sedov: constant alpha and both switches).
+signal-velocity viscosity with Cullen-Dehnen; Sedov: constant alpha and both switches; Noh:
+constant alpha, both switches, the signal viscosity, artificial conductivity, and the signal
+viscosity with Cullen-Dehnen and conductivity).
 
 Variants: ``--variants`` takes ``;``-separated variants, each a ``,``-separated list of
 ``name=value`` LAMMPS variable settings, e.g. ``'hfact=1.2;hfact=1.5,kernel=m6'``; every variant
@@ -175,6 +177,29 @@ def analyse_evrard(dump_path, run):
     return out
 
 
+def analyse_noh(dump_path, run):
+    """Noh implosion (examples/noh/in.noh) against the exact solution, with the measures of
+    examples/noh/analyse.py: |relative error| of the post-shock density (mean over
+    0.25-0.75 R_s, headline) and of the shock radius (binned rho through half the measured
+    post-shock value), L1(rho)/64 over r < 1.5 R_s, the wall heating (mean u over r < 0.25 R_s
+    / 0.5), the smallest u, and from the log the |relative energy error| and the largest
+    number of particles at the h cap (every step, else at the thermo lines)."""
+    import importlib.util
+    import math
+    path = os.path.join(ROOT, "examples", "noh", "analyse.py")
+    spec = importlib.util.spec_from_file_location("noh_analyse", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    frame = read_last_frame(dump_path)
+    t = frame.time if frame.time is not None else float(run.vars.get("tend", 0.6))
+    res, _ = module.noh_measures(frame, t, u0=float(run.vars.get("u0", 1e-6)))
+    log = module.parse_log(os.path.join(os.path.dirname(dump_path), "log.lammps"))
+    capped = log["capped_steps"] if math.isfinite(log["capped_steps"]) else log["capped_max"]
+    return {"rhopost": abs(res["err_rho_post"]), "rshock": abs(res["err_r_shock"]),
+            "l1rho": res["l1rho"], "wallheat": res["wallheat"], "umin": res["umin"],
+            "energy": abs(log["energy"]), "capped": capped, "n_measured": res["n_window"]}
+
+
 SCENES: Dict[str, Scene] = {
     "evrard": Scene(
         input="examples/evrard/in.evrard", res_var="n", out_var="out",
@@ -223,6 +248,18 @@ SCENES: Dict[str, Scene] = {
         notes="toy star (seed 001), 3D, n = 1: N ~ 2.1 n^3; damped to t = 12, then undamped "
               "to t = 18; L1 over all particles; R_fit: radius of the fitted rho^(1/n) = "
               "A (R^2 - r^2); *_free: drift/largest values over the undamped continuation"),
+    "noh": Scene(
+        input="examples/noh/in.noh", res_var="n", out_var="out",
+        default_res=(8, 12, 16), analyse=analyse_noh,
+        errors=(("rhopost", "rho_post_err"), ("rshock", "R_s_err"), ("l1rho", "L1_rho/64"),
+                ("wallheat", "u_centre/0.5"), ("umin", "u_min"), ("energy", "dE_rel"),
+                ("capped", "h_capped")),
+        plot=("rhopost", "rshock"), fit="rhopost",
+        notes="Noh implosion, 3D, t = 0.6: N ~ 16.8 n^3; rho_post_err: |mean rho over "
+              "0.05 < r < 0.15 / 64 - 1|; R_s_err: |shock radius / 0.2 - 1| (half the measured "
+              "post-shock density); u_centre: mean u over r < 0.05",
+        physics="switch=no;switch=mm;switch=cd;visc=signal;cond=1.0;"
+                "visc=signal,switch=cd,cond=1.0"),
 }
 
 
@@ -408,7 +445,7 @@ def plot(scene_name, scene, runs_by_variant, png_path, nproc):
     labels = {"rho": r"$L_1(\rho)$", "vx": r"$L_1(v_x)$", "p": r"$L_1(P)$", "u": r"$L_1(u)$",
               "vphi": r"$L_1(v_\phi)$", "vr": r"$L_1(v_r)$",
               "rshock": r"$|R_{peak} - R_s| / R_s$", "l1": r"$L_1(\rho) / \rho_c$",
-              "rfit": r"$|R_{fit} - R| / R$"}
+              "rfit": r"$|R_{fit} - R| / R$", "rhopost": r"$|\rho_{post} / 64 - 1|$"}
     fig = Figure(figsize=(4.2 * len(scene.plot), 4.2))
     axes = fig.subplots(1, len(scene.plot), squeeze=False)[0]
     markers = "osD^v<>px"

@@ -709,6 +709,35 @@ TEST(FixSPHAstro, ThermoReportsTheStepThatReachesTend)
   std::remove("test_every.dump");
 }
 
+TEST(FixSPHAstro, ThermoReportsTheStepThatReachesTendWithAFixEvaluatedEveryStep)
+{
+  // fix vector clears the computes' invoked flags every step (Modify::clearstep_compute):
+  // the final thermo's compute must still have its energy tallied (was: "energy was not
+  // tallied on step N", examples/noh/in.noh)
+  auto lmp = open_lammps();
+  gas(lmp, "box", 3, PAIR, "sph/astro tend 0.3");
+  commands(lmp, {"variable one equal 1", "fix every all vector 1 v_one", "thermo 1000",
+                 "run 100000"});
+  EXPECT_GT(lmp->update->ntimestep, 2);
+  auto *compute = lmp->modify->get_compute_by_id("sum");
+  ASSERT_NE(compute, nullptr);
+  EXPECT_EQ(compute->invoked_vector, lmp->update->ntimestep);
+}
+
+TEST(FixSPHAstro, ThermoReportsTheStepThatReachesTendAfterAThermoStep)
+{
+  // fixed dt 0.002, tend 0.011: step 5 (a thermo step) shortens the next step, which reaches
+  // tend; thermo's own schedule after step 5 (step 10) must not hide step 6
+  auto lmp = open_lammps();
+  gas(lmp, "box", 3, PAIR, "sph/astro dt fixed tend 0.011");
+  commands(lmp, {"thermo 5", "run 100000"});
+  EXPECT_EQ(lmp->update->ntimestep, 6);
+  auto *compute = lmp->modify->get_compute_by_id("sum");
+  ASSERT_NE(compute, nullptr);
+  EXPECT_EQ(compute->invoked_vector, 6);
+  EXPECT_EQ(global_vector(lmp, "sum", 12).size(), 12u);
+}
+
 TEST(FixSPHAstro, OnlyOneInstance)
 {
   auto lmp = open_lammps();

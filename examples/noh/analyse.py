@@ -41,13 +41,15 @@ gas).  Printed, one figure a line:
 ``--assert`` fails (exit 1) unless every listed figure is within its bound: ``rhopost``
 (|relative error| of the post-shock density), ``rshock`` (|relative error| of the shock
 radius), ``wallheat`` (central u / 0.5), ``preheat`` (mean pre-shock u), ``l1rho``,
-``energy`` (|final relative energy error|, needs --log), ``capped`` (needs --log): upper
+``energy`` (|final relative energy error|, needs --log), ``capped`` (largest number of
+particles at the h cap over all steps, else over the thermo lines; needs --log): upper
 bounds; ``umin`` (smallest u): a LOWER bound.
 """
 
 import argparse
 import math
 import os
+import re
 import sys
 
 import numpy as np
@@ -167,8 +169,20 @@ def noh_measures(frame, t, gamma=5.0 / 3.0, u0=1e-6, radius=1.0, nbins=40,
 
 
 def parse_log(path):
-    """Energy error, capped particles and run size from the scene's LAMMPS log."""
-    return parse_sph_log(path, loops="sum")
+    """Energy error, capped particles and run size from the scene's LAMMPS log; ``capped_steps``:
+    the largest number of particles at the h cap over all steps (in.noh's final print of its
+    fix vector of f_hvar[4]; nan if absent), ``rebuilds``: runs ended for a list rebuild."""
+    out = parse_sph_log(path, loops="sum")
+    out["capped_steps"] = math.nan
+    out["rebuilds"] = 0
+    with open(path, encoding="utf-8", errors="replace") as f:
+        for line in f:
+            m = re.search(r"largest over all steps (\S+)", line)
+            if m and not line.startswith("print"):
+                out["capped_steps"] = float(m.group(1))
+            if line.startswith("sph/astro/run: continuing"):
+                out["rebuilds"] += 1
+    return out
 
 
 def plot(d, t, png, gamma, u0, radius, nbins, title):
@@ -265,9 +279,10 @@ def main(argv=None):
         print(f"relative energy error (log, final) = {log['energy']:+.3e}, largest |error| "
               f"over the thermo lines = {log['energy_max']:.3e}")
         print(f"particles at the h cap (final) = {log['capped']:g}, most at a thermo line = "
-              f"{log['capped_max']:g}")
+              f"{log['capped_max']:g}, most at any step = {log['capped_steps']:g}")
         print(f"run: {log['natoms']} particles, {log['steps']} steps in {log['runs']} "
-              f"segments, loop time {log['loop_s']:.2f} s on {log['procs']} procs")
+              f"runs ({log['rebuilds']} list rebuilds), loop time {log['loop_s']:.2f} s on "
+              f"{log['procs']} procs")
 
     if args.png:
         plot(d, t, args.png, args.gamma, args.u0, args.radius, args.nbins,
@@ -281,7 +296,8 @@ def main(argv=None):
                   "l1rho": res["l1rho"]}
         if log is not None:
             values["energy"] = abs(log["energy"])
-            values["capped"] = log["capped"]
+            values["capped"] = max(log["capped_max"], log["capped_steps"]) \
+                if math.isfinite(log["capped_steps"]) else log["capped_max"]
         failed = []
         for item in args.bounds.split(","):
             if not item.strip():

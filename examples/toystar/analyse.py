@@ -34,12 +34,14 @@ error|), ``rrms`` (|R_rms error|), ``lambda`` (|relative error of the fitted A|)
 with the second dump ``l1free``, ``rfitfree`` (the same after the continuation),
 ``drift_l1`` (|change of L1/rho_c|), ``drift_r`` (|change of R_fit| / R); with --log
 ``ekin`` (largest Ekin/Eth in the continuation), ``energy`` (|relative energy error of the
-continuation|), ``capped``.
+continuation|), ``capped`` (particles at the h cap: the largest count over all steps that
+in.toystar prints, else the thermo lines of the continuation).
 """
 
 import argparse
 import math
 import os
+import re
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir,
@@ -53,7 +55,8 @@ def parse_log(path):
     """Figures of the relaxation (compute sum) and the free run (compute free) from the log."""
     out = {"ekin_relaxed": math.nan, "eth_relaxed": math.nan, "ekin_free_max": math.nan,
            "energy": math.nan, "energy_max": math.nan, "capped": math.nan, "steps": 0,
-           "loop_s": 0.0, "natoms": 0, "procs": 0, "ekin_free_end": math.nan}
+           "loop_s": 0.0, "natoms": 0, "procs": 0, "ekin_free_end": math.nan,
+           "capped_steps": math.nan}
     header = None
     relax_rows, free_rows = [], []
     with open(path, encoding="utf-8", errors="replace") as f:
@@ -62,6 +65,10 @@ def parse_log(path):
             if words[:1] == ["Step"]:
                 header = words
                 continue
+            m = re.search(r"largest over all steps (\S+)", line)
+            if m and not line.startswith("print"):
+                out["capped_steps"] = max(out["capped_steps"], float(m.group(1))) \
+                    if math.isfinite(out["capped_steps"]) else float(m.group(1))
             if line.startswith("Loop time of"):
                 header = None
                 w = line.split()
@@ -87,6 +94,10 @@ def parse_log(path):
         out["energy"] = free_rows[-1]["c_free[12]"]
         out["energy_max"] = max(abs(r["c_free[12]"]) for r in free_rows)
         out["capped"] = max(r["f_hvar[4]"] for r in free_rows)
+    # in.toystar prints the largest count over all steps of each phase (fix vector)
+    if math.isfinite(out["capped_steps"]):
+        out["capped"] = max(out["capped"], out["capped_steps"]) if math.isfinite(out["capped"]) \
+            else out["capped_steps"]
     return out
 
 
@@ -152,7 +163,8 @@ def main(argv=None):
               f" = {ratio:.3e} of the thermal energy {log['eth_relaxed']:.5g}")
         print(f"relative energy error of the continuation (final) = {log['energy']:+.3e}, largest "
               f"|error| = {log['energy_max']:.3e}")
-        print(f"particles at the h cap (most in the continuation) = {log['capped']:g}")
+        print(f"particles at the h cap (most at any step, else at a thermo line) = "
+              f"{log['capped']:g}")
         print(f"run: {log['natoms']} particles, {log['steps']} steps, loop time "
               f"{log['loop_s']:.2f} s on {log['procs']} procs")
         values.update(ekin=ratio, energy=abs(log["energy"]), capped=log["capped"])

@@ -3,10 +3,11 @@
 
 The same scene as examples/toystar/in.toystar, written as LAMMPS commands issued from
 Python: lambda comes from the Python reference (tools/sphastro/toystar.py) instead of the
-input's own formula, the segment loop (re-typing the particles by h so that each type's
-neighbour-list cutoff follows its h) is a Python loop, and the state is read straight from
-LAMMPS' memory (numpy views of x, v and the per-atom SPH state d_rho, d_h) after the damped
-relaxation and after the undamped continuation.
+input's own formula, and the state is read straight from LAMMPS' memory (numpy views of x, v
+and the per-atom SPH state d_rho) after the damped relaxation and after the undamped
+continuation. Neighbour lists follow h as in the input (fix sph/astro/h rebuild + collections
+with neighbor multi, sph/astro/run); the particles at the h cap and the kinetic energy of the
+continuation are sampled at every step (fix vector).
 
     source build/env.sh
     /usr/bin/python3 examples/toystar/toystar_python.py [--n 8] [--npoly 1] [--png toystar_py.png]
@@ -15,8 +16,9 @@ relaxation and after the undamped continuation.
 ``--assert`` bounds (upper bounds; exit 1 if one fails): ``l1`` (L1(rho)/rho_c of the relaxed
 star), ``rfit`` (|relative error of R_fit|), ``l1free``, ``rfitfree`` (the same after the
 continuation), ``drift_l1``, ``drift_r`` (their changes; drift_r relative to R), ``ekin``
-(largest kinetic / thermal energy sampled during the continuation), ``energy`` (|relative
-total-energy error| of the continuation). The figures are defined in examples/toystar/analyse.py.
+(largest kinetic / thermal energy of the continuation, sampled at every step), ``energy``
+(|relative total-energy error| of the continuation), ``capped`` (largest number of particles
+at the h cap over all steps). The figures are defined in examples/toystar/analyse.py.
 The plugin is found through LAMMPS_PLUGIN_PATH (set by build/env.sh) or given with --plugin.
 """
 import argparse
@@ -60,7 +62,6 @@ def main():
     parser.add_argument("--trelax", type=float, default=12.0)
     parser.add_argument("--tfree", type=float, default=6.0)
     parser.add_argument("--hfact", type=float, default=1.2)
-    parser.add_argument("--segsteps", type=int, default=50)
     parser.add_argument("--plugin", default=None, help="path of sphastroplugin.so to load")
     parser.add_argument("--outdir", default=".", help="where LAMMPS writes its log")
     parser.add_argument("--png", default=None, help="plot rho(r) after both phases")
@@ -71,7 +72,7 @@ def main():
     lam = toystar.toystar_lambda(M, R, k, n)
     gamma = 1.0 + 1.0 / n
     a = 2.0 * R / args.n                    # fcc lattice constant
-    ntypes, hstep, margin, skin = 6, 1.25, 1.3, 0.3
+    margin, skin = 1.3, 0.2                 # as in.toystar: h cap margin, skin in units of h0
 
     os.makedirs(args.outdir, exist_ok=True)
     lmp = lammps(cmdargs=["-log", os.path.join(args.outdir, "log.toystar_python"), "-screen",
@@ -85,23 +86,23 @@ atom_style      atomic
 atom_modify     map array sort 0 0.0
 boundary        s s s
 region          box block {-1.5 * R} {1.5 * R} {-1.5 * R} {1.5 * R} {-1.5 * R} {1.5 * R} units box
-create_box      {ntypes} box
+create_box      1 box
 region          ball sphere 0.0 0.0 0.0 {R} units box
 lattice         fcc {4.0 / a ** 3!r} origin 0.0 0.0 0.0
 create_atoms    1 region ball
-mass            * 1.0
+mass            1 1.0
 reset_atoms     id sort yes
 """)
     natoms = lmp.get_natoms()
     mass = M / natoms
     h0 = args.hfact * (mass / (M / (4.0 / 3.0 * math.pi * R ** 3))) ** (1.0 / 3.0)
-    href = 0.7 * h0
     lmp.commands_string(f"""
-mass            * {mass!r}
+mass            1 {mass!r}
 pair_style      sph/astro kernel m4 eos polytropic {k!r} {gamma!r} viscosity classic 1.0 2.0
 pair_coeff      * *
-fix             gas all sph/astro courant 0.3
-fix             hvar all sph/astro/h iterate hfact {args.hfact} margin {margin}
+fix             gas all sph/astro courant 0.3 tend {args.trelax!r}
+fix             hvar all sph/astro/h iterate hfact {args.hfact} margin {margin} rebuild 0.9 &
+                collections auto
 set             group all d_h {1.3 * h0!r}
 # seed 001: -lambda r and -nu v per unit mass; potential energy 1/2 lambda m r^2
 variable        fx atom -{lam!r}*mass*x
@@ -111,42 +112,41 @@ variable        epot atom 0.5*{lam!r}*mass*(x*x+y*y+z*z)
 fix             grav all addforce v_fx v_fy v_fz energy v_epot
 fix_modify      grav energy yes
 fix             damp all viscous {args.nu * mass!r}
+neighbor        {skin * h0!r} multi
 neigh_modify    every 1 delay 0 check yes
+fix             capped all vector 1 f_hvar[4]
 compute         sum all sph/astro/global
-thermo_style    custom step time dt c_sum[8] c_sum[9] c_sum[10] c_sum[11] f_hvar[4] cpu
+thermo_style    custom step time dt c_sum[8] c_sum[9] c_sum[10] c_sum[11] f_hvar[4] f_hvar[5] cpu
 thermo_modify   norm no
-thermo          {args.segsteps}
+thermo          50
 timestep        1e-4
-variable        kraw atom 1+floor(ln(d_h/{href!r})/ln({hstep}))
-variable        hclass atom (v_kraw<1)+(v_kraw>=1)*(v_kraw<={ntypes})*v_kraw+(v_kraw>{ntypes})*{ntypes}
 """)
 
-    def run_until(tstop, ekin_compute=None):
-        """Segments of segsteps steps, re-typed by h, until the time reaches tstop; returns
-        the largest kinetic energy seen at the segment ends (compute ekin_compute)."""
-        ekin_max = 0.0
-        while lmp.get_thermo("time") < tstop:
-            nlocal = lmp.extract_global("nlocal")
-            hmin = float(lmp.numpy.extract_atom("d_h")[:nlocal].min())
-            lmp.command("set group all type v_hclass")
-            lmp.command(f"neighbor {skin * hmin!r} multi")
-            lmp.command(f"run {args.segsteps}")
-            if ekin_compute:
-                ekin_max = max(ekin_max, global_value(lmp, ekin_compute, 8))
-        return ekin_max
+    def vector_max(fix):
+        """Largest value stored by a fix vector (LAMMPS' max() of a global vector)."""
+        lmp.command(f"variable vmax equal max(f_{fix})")
+        return float(lmp.extract_variable("vmax"))
 
-    run_until(args.trelax)
+    lmp.command("sph/astro/run 10000000")      # to trelax (tend), repeated after list rebuilds
     relaxed, t_relaxed = state(lmp)
     eth = global_value(lmp, "sum", 9)
     ekin_relaxed = global_value(lmp, "sum", 8)
-    # undamped continuation; compute free takes its energy reference E_0 now
-    lmp.commands_string("""
+    capped_relaxed = vector_max("capped")
+    # undamped continuation; compute free takes its energy reference E_0 now; fix gas is
+    # replaced (same ID) with the new tend
+    lmp.commands_string(f"""
 unfix           damp
+fix             gas all sph/astro courant 0.3 tend {args.trelax + args.tfree!r}
 compute         free all sph/astro/global
-thermo_style    custom step time dt c_free[8] c_free[11] c_free[12] f_hvar[4] cpu
+fix             ekin all vector 1 c_free[8]
+unfix           capped
+fix             capped all vector 1 f_hvar[4]
+thermo_style    custom step time dt c_free[8] c_free[11] c_free[12] f_hvar[4] f_hvar[5] cpu
 thermo_modify   norm no
 """)
-    ekin_free = run_until(args.trelax + args.tfree, "free")
+    lmp.command("sph/astro/run 10000000")
+    ekin_free = vector_max("ekin")
+    capped_free = vector_max("capped")
     free, t_free = state(lmp)
     energy = global_value(lmp, "free", 12)
     steps = lmp.get_thermo("step")
@@ -158,7 +158,7 @@ thermo_modify   norm no
     figures = {"l1": e1["l1_rel"], "rfit": abs(e1["err_r_fit"]), "l1free": e2["l1_rel"],
                "rfitfree": abs(e2["err_r_fit"]), "drift_l1": abs(e2["l1_rel"] - e1["l1_rel"]),
                "drift_r": abs(e2["r_fit"] - e1["r_fit"]) / R, "ekin": ekin_free / eth,
-               "energy": abs(energy)}
+               "energy": abs(energy), "capped": max(capped_relaxed, capped_free)}
     print(f"Toy star from Python: {natoms} particles, n = {n:g}, lambda = {lam:.8g}, "
           f"{int(steps)} steps, wall time {wall:.2f} s")
     for label, t, e in (("relaxed", t_relaxed, e1), ("free", t_free, e2)):
@@ -170,6 +170,8 @@ thermo_modify   norm no
     print(f"kinetic energy: {ekin_relaxed:.3e} after the relaxation, largest in the "
           f"continuation {ekin_free:.3e} = {ekin_free / eth:.3e} of the thermal energy; "
           f"relative energy error of the continuation {energy:+.3e}")
+    print(f"particles at the h cap, largest over all steps: {capped_relaxed:g} (relaxation), "
+          f"{capped_free:g} (continuation)")
     if args.png:
         toystar.plot_profile([(f"relaxed, t = {t_relaxed:.3g}", relaxed),
                               (f"free, t = {t_free:.3g}", free)], args.png, M, R, k, n,

@@ -404,9 +404,14 @@ uint64_t FixSPHAstro::hash_velocity_energy() const
   return all;
 }
 
-// make thermo (and the computes it needs) report the step that reaches tend
+// make thermo (and the computes it needs) report the step that reaches tend. All computes
+// with timeflag: addstep_compute() would skip those not invoked since the last
+// clearstep_compute(), which any fix evaluated every step (fix vector, fix ave/time) calls
 void FixSPHAstro::schedule_output(bigint step)
 {
+  // Output::write() of the current step (after end_of_step) re-schedules thermo at
+  // MIN(step + thermo every, laststep): the run's last step is now this one
+  if (update->laststep > step) update->laststep = step;
   if (output->next_thermo > step) {
     output->next_thermo = step;
     output->next = MIN(output->next, step);
