@@ -58,7 +58,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.p
                                 "tools"))
 
 from sphastro.dump import read_last_frame  # noqa: E402
-from sphastro.runs import parse_sph_log  # noqa: E402
+from sphastro.runs import check_bounds, parse_sph_log  # noqa: E402
 
 
 
@@ -298,28 +298,9 @@ def main(argv=None):
             values["energy"] = abs(log["energy"])
             values["capped"] = max(log["capped_max"], log["capped_steps"]) \
                 if math.isfinite(log["capped_steps"]) else log["capped_max"]
-        failed = []
-        for item in args.bounds.split(","):
-            if not item.strip():
-                continue
-            name, bound = item.split("=")
-            name = name.strip()
-            if name in ("energy", "capped") and log is None:
-                parser.error(f"--assert: '{name}' needs --log")
-            if name not in values:
-                parser.error(f"--assert: unknown figure '{name}' "
-                             f"({', '.join(sorted(values))})")
-            value, bound = values[name], float(bound)
-            if name == "umin":
-                ok = value >= bound
-                text = f"check {name} = {value:.4g} >= {bound:.4g}"
-            else:
-                ok = value <= bound
-                text = f"check {name} = {value:.4g} <= {bound:.4g}"
-            ok = ok and value == value and res["finite"]          # nan fails
-            print(f"{text}: {'ok' if ok else 'FAILED'}")
-            if not ok:
-                failed.append(name)
+        failed = check_bounds(args.bounds, values, lower=("umin",), needs_log=("energy", "capped"),
+                              have_log=log is not None, all_finite=res["finite"],
+                              error=parser.error)
         if failed:
             return 1
     return 0

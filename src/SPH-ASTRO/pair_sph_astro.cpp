@@ -36,6 +36,8 @@
 #include "fix_sph_astro_switch.h"
 #include "sph_astro_pair_terms.h"
 
+#include "sph_astro_pair_coeff.h"
+
 #include "atom.h"
 #include "comm.h"
 #include "domain.h"
@@ -333,23 +335,8 @@ void PairSPHAstro::settings(int narg, char **arg)
 
 void PairSPHAstro::coeff(int narg, char **arg)
 {
-  if (narg != 2)
-    error->all(FLERR,
-               "pair_coeff for pair_style sph/astro takes only two type ranges (got {} "
-               "arguments): the physics is set by pair_style",
-               narg);
   if (!allocated) allocate();
-  int ilo, ihi, jlo, jhi;
-  utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
-  utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
-  int count = 0;
-  for (int i = ilo; i <= ihi; i++)
-    for (int j = MAX(jlo, i); j <= jhi; j++) {
-      setflag[i][j] = 1;
-      count++;
-    }
-  if (count == 0)
-    error->all(FLERR, "pair_coeff sph/astro: type ranges {} {} select no pair", arg[0], arg[1]);
+  SPHAstro::set_type_pairs(lmp, "sph/astro", narg, arg, setflag);
 }
 
 void PairSPHAstro::init_style()

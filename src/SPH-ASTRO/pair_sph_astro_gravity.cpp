@@ -40,6 +40,8 @@
 #include "sph_astro_gravity_kernel.h"
 #include "sph_astro_gravity_kspace.h"
 
+#include "sph_astro_pair_coeff.h"
+
 #include "atom.h"
 #include "comm.h"
 #include "domain.h"
@@ -166,24 +168,8 @@ void PairSPHAstroGravity::resolve_gravity_constant()
 
 void PairSPHAstroGravity::coeff(int narg, char **arg)
 {
-  if (narg != 2)
-    error->all(FLERR,
-               "pair_coeff for pair_style sph/astro/gravity takes only two type ranges (got {} "
-               "arguments)",
-               narg);
   if (!allocated) allocate();
-  int ilo, ihi, jlo, jhi;
-  utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
-  utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
-  int count = 0;
-  for (int i = ilo; i <= ihi; i++)
-    for (int j = MAX(jlo, i); j <= jhi; j++) {
-      setflag[i][j] = 1;
-      count++;
-    }
-  if (count == 0)
-    error->all(FLERR, "pair_coeff sph/astro/gravity: type ranges {} {} select no pair", arg[0],
-               arg[1]);
+  SPHAstro::set_type_pairs(lmp, "sph/astro/gravity", narg, arg, setflag);
 }
 
 double *PairSPHAstroGravity::state_h() const

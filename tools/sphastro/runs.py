@@ -102,3 +102,39 @@ def parse_sph_log(path, loops="last"):
                    steps=sum(int(lp[2]) for lp in chosen), natoms=int(found[-1][3]),
                    runs=len(found))
     return out
+
+
+def check_bounds(spec, values, lower=(), needs_log=(), have_log=True, all_finite=True,
+                 error=None):
+    """The ``--assert`` checks of the scene analyses: ``spec`` is ``name=bound,...``; each
+    figure in ``values`` must be <= its bound, those named in ``lower`` >= it; nan (or
+    ``all_finite`` false) fails. Figures in ``needs_log`` need the LAMMPS log. ``error`` (e.g.
+    ``parser.error``) reports a malformed spec. Prints one line per check and returns the
+    names of the failed ones."""
+    def fail(message):
+        if error is None:
+            raise ValueError(message)
+        error(message)
+
+    failed = []
+    for item in spec.split(","):
+        if not item.strip():
+            continue
+        name, bound = item.split("=")
+        name = name.strip()
+        if name in needs_log and not have_log:
+            fail(f"--assert: '{name}' needs --log")
+        if name not in values:
+            fail(f"--assert: unknown figure '{name}' ({', '.join(sorted(values))})")
+        value, bound = values[name], float(bound)
+        if name in lower:
+            ok = value >= bound
+            text = f"check {name} = {value:.4g} >= {bound:.4g}"
+        else:
+            ok = value <= bound
+            text = f"check {name} = {value:.4g} <= {bound:.4g}"
+        ok = ok and value == value and all_finite          # nan fails
+        print(f"{text}: {'ok' if ok else 'FAILED'}")
+        if not ok:
+            failed.append(name)
+    return failed
