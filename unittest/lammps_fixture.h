@@ -140,6 +140,27 @@ inline std::map<int, double> per_atom(const std::unique_ptr<LAMMPS_NS::LAMMPS> &
   return out;
 }
 
+// a small fcc box with no SPH styles yet, for tests of the errors bad input gives
+class BadInputTest : public ::testing::Test {
+ protected:
+  std::unique_ptr<LAMMPS_NS::LAMMPS> lmp;
+  void SetUp() override
+  {
+    lmp = open_lammps();
+    commands(lmp,
+             {"units lj", "atom_style atomic", "atom_modify map array", "lattice fcc 4.0",
+              "region box block 0 2 0 2 0 2", "create_box 1 box", "create_atoms 1 box",
+              "mass 1 0.25"});
+  }
+  // the command's error message must contain fragment
+  void expect_error(const std::string &line, const std::string &fragment)
+  {
+    const std::string message = error_of(lmp, line);
+    EXPECT_NE(message.find(fragment), std::string::npos)
+        << "command: " << line << "\nmessage: " << message << "\nexpected: " << fragment;
+  }
+};
+
 }    // namespace sph_astro_test
 
 #endif

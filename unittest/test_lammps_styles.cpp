@@ -716,8 +716,8 @@ TEST(FixSPHAstro, ThermoReportsTheStepThatReachesTendWithAFixEvaluatedEveryStep)
   // tallied on step N", examples/noh/in.noh)
   auto lmp = open_lammps();
   gas(lmp, "box", 3, PAIR, "sph/astro tend 0.3");
-  commands(lmp, {"variable one equal 1", "fix every all vector 1 v_one", "thermo 1000",
-                 "run 100000"});
+  commands(lmp,
+           {"variable one equal 1", "fix every all vector 1 v_one", "thermo 1000", "run 100000"});
   EXPECT_GT(lmp->update->ntimestep, 2);
   auto *compute = lmp->modify->get_compute_by_id("sum");
   ASSERT_NE(compute, nullptr);
@@ -982,23 +982,8 @@ TEST(SPHAstroState, DataFileRoundTrip)
 
 // ---------------------------------------------------------------- bad input
 
-class BadInput : public ::testing::Test {
+class BadInput : public BadInputTest {
  protected:
-  std::unique_ptr<LAMMPS> lmp;
-  void SetUp() override
-  {
-    lmp = open_lammps();
-    commands(lmp,
-             {"units lj", "atom_style atomic", "atom_modify map array", "lattice fcc 4.0",
-              "region box block 0 2 0 2 0 2", "create_box 1 box", "create_atoms 1 box",
-              "mass 1 0.25"});
-  }
-  void expect_error(const std::string &line, const std::string &fragment)
-  {
-    const std::string message = error_of(lmp, line);
-    EXPECT_NE(message.find(fragment), std::string::npos)
-        << "command: " << line << "\nmessage: " << message << "\nexpected: " << fragment;
-  }
   void valid_setup()
   {
     commands(lmp,

@@ -198,24 +198,7 @@ TEST(XSPH, EnergyIsKeptButTheFlowIsNoLongerAdiabatic)
 
 // ---------------------------------------------------------------- bad input
 
-class BadPhysicsInput : public ::testing::Test {
- protected:
-  std::unique_ptr<LAMMPS> lmp;
-  void SetUp() override
-  {
-    lmp = open_lammps();
-    commands(lmp,
-             {"units lj", "atom_style atomic", "atom_modify map array", "lattice fcc 4.0",
-              "region box block 0 2 0 2 0 2", "create_box 1 box", "create_atoms 1 box",
-              "mass 1 0.25"});
-  }
-  void expect_error(const std::string &line, const std::string &fragment)
-  {
-    const std::string message = error_of(lmp, line);
-    EXPECT_NE(message.find(fragment), std::string::npos)
-        << "command: " << line << "\nmessage: " << message << "\nexpected: " << fragment;
-  }
-};
+class BadPhysicsInput : public BadInputTest {};
 
 TEST_F(BadPhysicsInput, KeywordValues)
 {
