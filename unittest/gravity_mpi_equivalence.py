@@ -7,8 +7,10 @@ a periodic box), reads the dumps and
 compares forces and per-atom potential energies particle by particle (matched by position)
 with the 1-rank run. Summation
 order differs between decompositions, so the bound is relative round-off (default 1e-10 of
-each field's largest magnitude).
-Usage: gravity_mpi_equivalence.py WORKDIR [--ranks 1,2,3] [--tol 1e-10] [--solvers direct,msm,pppm]
+each field's largest magnitude). An entry of --ranks is a rank count (LAMMPS chooses the
+processor grid) or a grid PXxPYxPZ (`processors PX PY PZ`, PX*PY*PZ ranks).
+Usage: gravity_mpi_equivalence.py WORKDIR [--ranks 1,2,3,3x1x1] [--tol 1e-10]
+       [--solvers direct,msm,pppm]
 """
 import argparse
 import os
@@ -24,11 +26,16 @@ ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), 
 
 
 def run(workdir, ranks, solver):
+    """ranks: a rank count ("3") or a processor grid ("3x1x1")"""
+    grid = ranks.split("x")
+    nranks = int(np.prod([int(g) for g in grid]))
+    pgrid = " ".join(grid) if len(grid) == 3 else "* * *"
     out = os.path.join(workdir, f"dump.{solver}.np{ranks}")
-    cmd = ["mpirun", "-np", str(ranks), "lmp", "-in",
+    cmd = ["mpirun", "-np", str(nranks), "lmp", "-in",
            os.path.join(ROOT, "examples", "gravity_sphere", "in.gravity_sphere"),
            "-log", os.path.join(workdir, f"log.{solver}.np{ranks}"), "-screen", "none",
-           "-var", "n", "8", "-var", "ref", "no", "-var", "solver", solver, "-var", "out", out]
+           "-var", "n", "8", "-var", "ref", "no", "-var", "solver", solver, "-var", "out", out,
+           "-var", "pgrid", pgrid]
     subprocess.run(cmd, check=True, cwd=workdir)
     cols = read_last_frame(out).columns
     # create_atoms numbers the lattice sites per rank, so IDs differ between decompositions:
@@ -47,7 +54,7 @@ def main():
     args = p.parse_args()
     args.workdir = os.path.abspath(args.workdir)
     os.makedirs(args.workdir, exist_ok=True)
-    ranks = [int(r) for r in args.ranks.split(",")]
+    ranks = args.ranks.split(",")
     failed = False
     for solver in args.solvers.split(","):
         ref = run(args.workdir, ranks[0], solver)

@@ -9,7 +9,9 @@
 // LAMMPS' MSM refuses systems whose charges do not sum to zero; for open boundaries the
 // multilevel sum is exact for any total mass (the top grid level is summed directly), so the
 // gravity variant allows it. Periodic boxes are refused: a periodic self-gravitating system
-// needs the neutralising background that only the Ewald/PPPM variant supplies.
+// needs the neutralising background that only the Ewald/PPPM variant supplies. The grid levels
+// are shared among the MPI ranks as in LAMMPS' MSM but with the grid points at cell corners, which
+// mends LAMMPS' MSM with more than 2 ranks along an axis (set_grid_local_corners below).
 
 #include "msm_sph_astro_gravity.h"
 
@@ -17,12 +19,18 @@
 
 #include "domain.h"
 #include "error.h"
-#include "comm.h"
 #include "force.h"
+#include "grid3d.h"
+#include "math_extra.h"
+#include "memory.h"
+#include "neighbor.h"
+
+#include <algorithm>
 
 using namespace LAMMPS_NS;
 using namespace SPHAstro;
 
+static constexpr int OFFSET = 16384;    // as in LAMMPS' msm.cpp: int(-0.75) must be -1
 static constexpr const char *STYLE = "kspace_style msm/sph/astro/gravity";
 
 MSMSPHAstroGravity::MSMSPHAstroGravity(LAMMPS *lmp) : MSM(lmp)
@@ -38,17 +46,6 @@ void MSMSPHAstroGravity::init()
                "{}: boundary {} is periodic; MSM gravity needs non-periodic boundaries (f, s "
                "or m) in x, y and z (for periodic boxes use kspace_style pppm/sph/astro/gravity)",
                STYLE, boundary_string(lmp));
-  // LAMMPS' MSM (4 Feb 2025, also the stock msm with charges) is wrong with open boundaries
-  // when more than 2 MPI ranks lie along one axis of the processor grid: forces against the
-  // O(N^2) reference, uniform sphere n 8: RMS error 1.4e-5 on 1, 2 and 4 (1x2x2) ranks,
-  // 2.3e-3 on 3 (any of 3x1x1, 1x3x1, 1x1x3) and on 4 as 4x1x1 (doc/kspace_sph_astro_gravity.rst)
-  if (comm->procgrid[0] > 2 || comm->procgrid[1] > 2 || comm->procgrid[2] > 2)
-    error->all(FLERR,
-               "{}: processor grid {}x{}x{} has more than 2 MPI ranks along an axis, where "
-               "LAMMPS' MSM with open boundaries gives wrong long-range forces (RMS error "
-               "~2e-3 instead of the requested accuracy); use at most 2 ranks per axis "
-               "(1, 2, 4 or 8 ranks, e.g. processors 2 2 2) or direct summation",
-               STYLE, comm->procgrid[0], comm->procgrid[1], comm->procgrid[2]);
   G_ = gravity_constant(lmp, STYLE);
   masses_to_charges(lmp);
   {
@@ -65,4 +62,105 @@ void MSMSPHAstroGravity::compute(int eflag, int vflag)
   qsum_qsq(0);
   q2 = qsqsum * G_;
   MSM::compute(eflag, vflag);
+}
+
+/* ----------------------------------------------------------------------
+   LAMMPS' MSM::setup, then the grid levels re-partitioned among the ranks with grid points at
+   cell corners (set_grid_local_corners below) and the grids allocated for that partition
+------------------------------------------------------------------------- */
+
+void MSMSPHAstroGravity::setup()
+{
+  MSM::setup();
+  deallocate();
+  set_grid_local_corners();
+  allocate();
+}
+
+/* ----------------------------------------------------------------------
+   MSM::set_grid_local of LAMMPS (4 Feb 2025, src/KSPACE/msm.cpp) with one change: the grid
+   points a rank owns on each level are assigned with the points at cell corners (Grid3d shift
+   0), where MSM puts them; LAMMPS assigns them with Grid3d's default, cell centres (shift 0.5).
+
+   Why: MSM::compute restricts level n onto level n+1 only on the ranks active on level n, and a
+   rank restricts onto the coarse points it owns. With cell centres and more than 2 ranks along
+   an axis, the owner of a coarse point may own no point of the finer level: with 3 ranks the
+   single point of a 1-point level (centre 0.5) belongs to the middle rank, which owns nothing of
+   the 2-point level below (centres 0.25 and 0.75), so it never restricts onto that point and
+   the charge of the coarsest level is lost. With corners, coarse point i sits where fine point
+   2i sits and both belong to the same rank. Measured with open boundaries (1061 particles, MSM
+   1e-5, grid 8, order 10): relative RMS force error against direct summation 2.3e-3 with
+   LAMMPS' partition on 3 ranks (any axis) and on 4 as 4x1x1, 1.4e-5 with this one on every
+   grid, as on 1 rank (stock msm with charges: 2.6e-4 against 2.7e-8,
+   examples/gravity_sphere/in.msm_stock_ranks).
+------------------------------------------------------------------------- */
+
+void MSMSPHAstroGravity::set_grid_local_corners()
+{
+  const double *prd = triclinic ? domain->prd_lamda : domain->prd;
+  const double *sublo = triclinic ? domain->sublo_lamda : domain->sublo;
+  const double *subhi = triclinic ? domain->subhi_lamda : domain->subhi;
+  const int periodic[3] = {domain->xperiodic, domain->yperiodic, domain->zperiodic};
+  int *in_lo[3] = {nxlo_in, nylo_in, nzlo_in};
+  int *in_hi[3] = {nxhi_in, nyhi_in, nzhi_in};
+  int *out_lo[3] = {nxlo_out, nylo_out, nzlo_out};
+  int *out_hi[3] = {nxhi_out, nyhi_out, nzhi_out};
+  int *out_all_lo[3] = {&nxlo_out_all, &nylo_out_all, &nzlo_out_all};
+  int *out_all_hi[3] = {&nxhi_out_all, &nyhi_out_all, &nzhi_out_all};
+  const int direct_lo[3] = {nxlo_direct, nylo_direct, nzlo_direct};
+  const int direct_hi[3] = {nxhi_direct, nyhi_direct, nzhi_direct};
+  int *beta[3] = {betax, betay, betaz};
+
+  // stencil of the particle-to-grid mapping
+  nlower = -(order - 1) / 2;
+  nupper = order / 2;
+
+  for (int n = 0; n < levels; n++) {
+    memory->destroy3d_offset(qgrid[n], nzlo_out[n], nylo_out[n], nxlo_out[n]);
+    memory->destroy3d_offset(egrid[n], nzlo_out[n], nylo_out[n], nxlo_out[n]);
+    {
+      Grid3d partition(lmp, world, nx_msm[n], ny_msm[n], nz_msm[n]);
+      partition.set_shift_grid(0.0);
+      partition.setup_grid(nxlo_in[n], nxhi_in[n], nylo_in[n], nyhi_in[n], nzlo_in[n], nzhi_in[n],
+                           nxlo_out[n], nxhi_out[n], nylo_out[n], nyhi_out[n], nzlo_out[n],
+                           nzhi_out[n]);
+    }
+    const int npoints[3] = {nx_msm[n], ny_msm[n], nz_msm[n]};
+
+    // ghost points: the particles of my sub-domain (plus half the skin on the finest level)
+    // reach them; coarser levels need room for the direct sum and the restriction
+    double dist[3];
+    const double cuthalf = (n == 0) ? 0.5 * neighbor->skin : 0.0;
+    dist[0] = dist[1] = dist[2] = cuthalf;
+    if (triclinic) MathExtra::tribbox(domain->h, cuthalf, &dist[0]);
+
+    for (int d = 0; d < 3; d++) {
+      const int nlo =
+          static_cast<int>((sublo[d] - dist[d] - boxlo[d]) * npoints[d] / prd[d] + OFFSET) - OFFSET;
+      const int nhi =
+          static_cast<int>((subhi[d] + dist[d] - boxlo[d]) * npoints[d] / prd[d] + OFFSET) - OFFSET;
+      if (n == 0) {
+        *out_all_lo[d] = nlo + nlower;
+        *out_all_hi[d] = nhi + nupper;
+      }
+      // the direct sum uses the +z hemisphere only: no direct-sum ghosts below in z
+      out_lo[d][n] = (d < 2) ? nlo + std::min(-order, direct_lo[d]) : nlo - order;
+      out_hi[d][n] = nhi + std::max(order, direct_hi[d]);
+
+      // extra grid points beyond a non-periodic boundary, on the ranks that own grid points
+      if (domain->nonperiodic && !periodic[d] && in_lo[d][n] <= in_hi[d][n]) {
+        if (in_lo[d][n] == 0) in_lo[d][n] = alpha[n];
+        out_lo[d][n] = std::max(out_lo[d][n], alpha[n]);
+        if (n == 0) *out_all_lo[d] = std::max(*out_all_lo[d], alpha[0]);
+        if (in_hi[d][n] == npoints[d] - 1) in_hi[d][n] = beta[d][n];
+        out_hi[d][n] = std::min(out_hi[d][n], beta[d][n]);
+        if (n == 0) *out_all_hi[d] = std::min(*out_all_hi[d], beta[d][0]);
+      }
+    }
+
+    // ranks without grid points on this level leave its communication
+    set_proc_grid(n);
+    ngrid[n] = (nxhi_out[n] - nxlo_out[n] + 1) * (nyhi_out[n] - nylo_out[n] + 1) *
+        (nzhi_out[n] - nzlo_out[n] + 1);
+  }
 }

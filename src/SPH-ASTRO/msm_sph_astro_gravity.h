@@ -19,10 +19,13 @@ class MSMSPHAstroGravity : public MSM {
  public:
   MSMSPHAstroGravity(class LAMMPS *);
   void init() override;
+  void setup() override;
   void compute(int, int) override;
 
  protected:
   double G_ = 0.0;
+
+  void set_grid_local_corners();
 };
 
 }    // namespace LAMMPS_NS
