@@ -688,10 +688,11 @@ void PairSPHAstro::count_neighbours()
      du_i/dt = P_i/(Omega_i rho_i^2) sum_j m_j v_ij . grad_i W_ij(h_i)
                + 1/2 sum_j m_j Pi_ij v_ij . gradbar_i W_ij
    with gradbar W_ij = (grad W(h_i) + grad W(h_j))/2 (seed 000, "average of the kernel
-   contributions"). dW/dh = -sigma/h^(d+1) (d w(q) + q w'(q)).
+   contributions"). dW/dh = -sigma/h^(d+1) (d w(q) + q w'(q)). CURL: the same loop also sums
+   m_j v_ij . grad_i W(h_i) and m_j v_ij x grad_i W(h_i) for div v and curl v (velocity_curl).
 ------------------------------------------------------------------------- */
 
-template <class KERNEL, int DIM> void PairSPHAstro::density_gradh()
+template <class KERNEL, int DIM, bool CURL> void PairSPHAstro::density_gradh()
 {
   using K = Kernel<KERNEL, DIM>;
   double **x = atom->x;
@@ -701,6 +702,7 @@ template <class KERNEL, int DIM> void PairSPHAstro::density_gradh()
   double *rho = atom->dvector[state_.rho];
   double *h = atom->dvector[state_.h];
   const tagint *tag = atom->tag;
+  double **vest = CURL ? atom->darray[state_.vest] : nullptr;
 
   const int inum = listfull_->inum;
   const int *ilist = listfull_->ilist;
@@ -729,6 +731,7 @@ template <class KERNEL, int DIM> void PairSPHAstro::density_gradh()
     double hlo = 0.0, hhi = INFINITY;    // f(h) = rho(h) - rho_target(h) rises with h
     double h_evaluated = hi;             // rho, Omega and the count belong to this h
     double rhoi = 0.0, dsum = 0.0, ni = 0.0;
+    double curl_sum[4] = {0.0, 0.0, 0.0, 0.0};    // CURL: sum_j m_j v_ij . grad_i W, v_ij x grad_i W
     bool converged = false, at_cap = false;
     int it = 0;
     while (it < maxiter) {
@@ -738,19 +741,33 @@ template <class KERNEL, int DIM> void PairSPHAstro::density_gradh()
       const double norm = sigma * inv_h_pow_dim<DIM>(hinv);
       const double hR2 = R2 * hi * hi;
       double w_sum = mi * w0, dwh_sum = -mi * DIM * w0;    // self term
+      double vgrad[4] = {0.0, 0.0, 0.0, 0.0};    // the same sums over w'(q) / r, at this h
       ni = 0.0;
       for (int jj = 0; jj < jnum; jj++) {
         const int j = jlist[jj] & NEIGHMASK;
         const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
         const double r2 = dx * dx + dy * dy + dz * dz;
         if (r2 >= hR2) continue;
-        const double q = std::sqrt(r2) * hinv;
+        const double r = std::sqrt(r2);
+        const double q = r * hinv;
         const double mj = rmass ? rmass[j] : mass[type[j]];
         const double w = K::w(q);
+        const double dw = K::dw(q);
         w_sum += mj * w;
-        dwh_sum -= mj * (DIM * w + q * K::dw(q));
+        dwh_sum -= mj * (DIM * w + q * dw);
         ni += 1.0;
+        if (CURL && r2 > 0.0) {
+          const double dwr = mj * dw / r;
+          const double dvx = vest[i][0] - vest[j][0], dvy = vest[i][1] - vest[j][1],
+                       dvz = vest[i][2] - vest[j][2];
+          vgrad[0] += (dvx * dx + dvy * dy + dvz * dz) * dwr;
+          vgrad[1] += (dvy * dz - dvz * dy) * dwr;
+          vgrad[2] += (dvz * dx - dvx * dz) * dwr;
+          vgrad[3] += (dvx * dy - dvy * dx) * dwr;
+        }
       }
+      if (CURL)    // grad_i W = sigma h^-(d+1) w'(q) r_ij / r
+        for (int k = 0; k < 4; k++) curl_sum[k] = norm * hinv * vgrad[k];
       rhoi = norm * w_sum;
       dsum = norm * hinv * dwh_sum;    // sum_j m_j dW/dh
       h_evaluated = hi;
@@ -786,6 +803,8 @@ template <class KERNEL, int DIM> void PairSPHAstro::density_gradh()
     h[i] = hi;
     rho[i] = rhoi;
     nneigh_[i] = ni;
+    if (CURL)
+      for (int k = 0; k < 4; k++) dcurl_[i][k] = curl_sum[k];
     // h held at the cap does not follow rho: Omega = 1
     omega_[i] = at_cap ? 1.0 : 1.0 + hi / (DIM * rhoi) * dsum;
     if (!(omega_[i] > 0.0)) omega_[i] = 1.0;
@@ -820,8 +839,11 @@ template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
     comm->forward_comm(this, 1);
   }
   counts_step_ = update->ntimestep;    // a density pass counts the neighbours
-  if (form == GRADH)
-    density_gradh<KERNEL, DIM>();
+  if (form == GRADH && curl_on_) {    // the curl v sums ride on the h iteration's last sum
+    forward_predicted_velocities();
+    density_gradh<KERNEL, DIM, true>();
+  } else if (form == GRADH)
+    density_gradh<KERNEL, DIM, false>();
   else if (!density_continuity_ || integrator_->density_needs_init()) {
     if (symmetrise_kernel_)
       density_sum<KERNEL, DIM, true>();
@@ -838,7 +860,7 @@ template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
   equation_of_state();
   if (curl_on_) {
     if (form == GRADH)
-      velocity_curl<KERNEL, DIM, GRADH>();
+      velocity_curl_finish(true);    // sums from density_gradh
     else if (symmetrise_kernel_)
       velocity_curl<KERNEL, DIM, KMEAN>();
     else
@@ -880,9 +902,10 @@ template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
      div v_i = -1/(Omega_i rho_i) sum_j m_j v_ij . grad_i W_ij
      curl v_i = 1/(Omega_i rho_i) sum_j m_j v_ij x grad_i W_ij      (Omega = 1 without GRADH)
      Balsara: f_i = |div v|_i / (|div v|_i + |curl v|_i + 0.0001 c_i / h_i)
-   over the full list and W(h_i) (GRADH) or the half list and W(h_ij) (HMEAN) or the
-   averaged (W(h_i) + W(h_j))/2 (KMEAN). Costs one neighbour loop and two communications,
-   only when balsara is on or fix sph/astro/switch needs curl v.
+   with W(h_i) (GRADH: the sums are taken in density_gradh's last evaluation, at the h it keeps,
+   over the same full list; no pass of their own) or over the half list with W(h_ij) (HMEAN) or
+   the averaged (W(h_i) + W(h_j))/2 (KMEAN: one neighbour loop and a reverse communication).
+   Only when balsara is on or fix sph/astro/switch needs curl v.
 ------------------------------------------------------------------------- */
 
 template <class KERNEL, int DIM, int KFORM> void PairSPHAstro::velocity_curl()
@@ -894,7 +917,6 @@ template <class KERNEL, int DIM, int KFORM> void PairSPHAstro::velocity_curl()
   const int *type = atom->type;
   const double *rmass = atom->rmass;
   const double *mass = atom->mass;
-  const double *rho = eval_density();
   const double *h = atom->dvector[state_.h];
   double **vest = atom->darray[state_.vest];
   const int nlocal = atom->nlocal;
@@ -903,8 +925,7 @@ template <class KERNEL, int DIM, int KFORM> void PairSPHAstro::velocity_curl()
   const double sigma = K::sigma();
   const double R2 = K::radius * K::radius;
 
-  comm_stage_ = Stage::VELOCITY;    // the ghosts' predicted velocities of this step
-  comm->forward_comm(this, 3);
+  forward_predicted_velocities();
 
   NeighList *nl = GH ? listfull_ : list;
   const int nzero = (!GH && newton_pair) ? nall : nlocal;
@@ -954,8 +975,17 @@ template <class KERNEL, int DIM, int KFORM> void PairSPHAstro::velocity_curl()
     comm_stage_ = Stage::CURL;
     comm->reverse_comm(this, 4);
   }
+  velocity_curl_finish(GH);
+}
+
+// div v, |curl v| and the Balsara factor of the owned particles from the sums in dcurl_
+void PairSPHAstro::velocity_curl_finish(bool gradh)
+{
+  const double *rho = eval_density();
+  const double *h = atom->dvector[state_.h];
+  const int nlocal = atom->nlocal;
   for (int i = 0; i < nlocal; i++) {
-    const double norm = 1.0 / ((GH ? omega_[i] : 1.0) * rho[i]);
+    const double norm = 1.0 / ((gradh ? omega_[i] : 1.0) * rho[i]);
     const double divv = -dcurl_[i][0] * norm;
     const double curlv = norm *
         std::sqrt(dcurl_[i][1] * dcurl_[i][1] + dcurl_[i][2] * dcurl_[i][2] +
@@ -963,6 +993,13 @@ template <class KERNEL, int DIM, int KFORM> void PairSPHAstro::velocity_curl()
     curlv_[i] = curlv;
     if (balsara_on_) balsara_[i] = balsara_factor(divv, curlv, soundspeed_[i], h[i]);
   }
+}
+
+// the ghosts' predicted velocities of this step (curl v sums)
+void PairSPHAstro::forward_predicted_velocities()
+{
+  comm_stage_ = Stage::VELOCITY;
+  comm->forward_comm(this, 3);
 }
 
 template <class KERNEL> void PairSPHAstro::dispatch_dimension()

@@ -185,8 +185,10 @@ class PairSPHAstro : public Pair {
   }
   int pair_form() const;
   template <class KERNEL, int DIM, int KFORM> void velocity_curl();
+  void velocity_curl_finish(bool gradh);
+  void forward_predicted_velocities();
   template <class KERNEL, int DIM, bool KM> void density_sum();
-  template <class KERNEL, int DIM> void density_gradh();
+  template <class KERNEL, int DIM, bool CURL> void density_gradh();
   void count_neighbours();
   template <class KERNEL, int DIM, int FORM, bool ENERGY, int VISC, bool COND> void force_pass();
   template <class KERNEL, int DIM, int FORM> void dispatch_force();
