@@ -731,7 +731,8 @@ template <class KERNEL, int DIM, bool CURL> void PairSPHAstro::density_gradh()
     double hlo = 0.0, hhi = INFINITY;    // f(h) = rho(h) - rho_target(h) rises with h
     double h_evaluated = hi;             // rho, Omega and the count belong to this h
     double rhoi = 0.0, dsum = 0.0, ni = 0.0;
-    double curl_sum[4] = {0.0, 0.0, 0.0, 0.0};    // CURL: sum_j m_j v_ij . grad_i W, v_ij x grad_i W
+    double curl_sum[4] = {0.0, 0.0, 0.0,
+                          0.0};    // CURL: sum_j m_j v_ij . grad_i W, v_ij x grad_i W
     bool converged = false, at_cap = false;
     int it = 0;
     while (it < maxiter) {
@@ -839,7 +840,7 @@ template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
     comm->forward_comm(this, 1);
   }
   counts_step_ = update->ntimestep;    // a density pass counts the neighbours
-  if (form == GRADH && curl_on_) {    // the curl v sums ride on the h iteration's last sum
+  if (form == GRADH && curl_on_) {     // the curl v sums ride on the h iteration's last sum
     forward_predicted_velocities();
     density_gradh<KERNEL, DIM, true>();
   } else if (form == GRADH)
