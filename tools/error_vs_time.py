@@ -66,6 +66,20 @@ from sphastro.sod import sod_errors  # noqa: E402
 
 
 @dataclasses.dataclass
+class Preset:
+    """A comparison run by ``--preset NAME``: resolutions, MPI ranks, variables for all runs,
+    variants, and the other code's published points ``(N, wall s, error of the fit key)``,
+    drawn as a dashed curve in the panel of the fit key and listed under the table."""
+    resolutions: Sequence[int]
+    np: int
+    var: Sequence[str]
+    variants: str
+    reference_label: str
+    reference: Sequence[Tuple[int, float, float]]
+    notes: str = ""
+
+
+@dataclasses.dataclass
 class Scene:
     """A test scene with a known solution.
 
@@ -80,6 +94,7 @@ class Scene:
     fit : key whose convergence order is fitted.
     notes : one line printed under the table.
     physics : the variants of ``--variants physics`` (smoothing-length modes, switches).
+    presets : named comparisons for ``--preset NAME``: a :class:`Preset` each.
     """
     input: str
     res_var: str
@@ -91,6 +106,7 @@ class Scene:
     fit: str
     notes: str = ""
     physics: str = ""
+    presets: Dict[str, Preset] = dataclasses.field(default_factory=dict)
 
 
 def analyse_sod(dump_path, run):
@@ -218,7 +234,16 @@ SCENES: Dict[str, Scene] = {
         plot=("rho", "vx", "p"), fit="rho",
         notes="Sod: ny cells across y,z are fixed, so N ~ nx (quasi-1D); errors over |x| < 0.5",
         physics="hmode=fixed,hfact=1.5;hmode=iterate;hmode=iterate,switch=mm;"
-                "hmode=iterate,switch=cd;hmode=iterate,visc=signal,switch=cd"),
+                "hmode=iterate,switch=cd;hmode=iterate,visc=signal,switch=cd",
+        presets={"phantom": Preset(
+            # Phantom's 3D Sod (../shared/DESIGN.md: gamma 5/3, quintic kernel, 2 OpenMP
+            # threads, L1(rho) per particle over |x| < 0.5); ny 8 and these nx give its exact
+            # particle counts (4 x 8^2 x nx left, an eighth of that right)
+            resolutions=(57, 129, 273), np=2, var=("ny=8", "switch=cd"),
+            variants="kernel=m4,hfact=1.2;kernel=m6,hfact=1.0",
+            reference_label="Phantom (2 OpenMP threads)",
+            reference=((16416, 44.0, 1.56e-2), (37152, 131.0, 7.46e-3), (78624, 536.0, 3.85e-3)),
+            notes="Phantom's particle counts, variable h + Cullen-Dehnen switch, 2 MPI ranks")}),
     "gresho": Scene(
         input="examples/gresho/in.gresho", res_var="n", out_var="out",
         default_res=(32, 64, 128), analyse=analyse_gresho,
@@ -439,7 +464,7 @@ def format_table(scene_name, scene, runs_by_variant, nproc):
     return "\n".join(lines + summary) + "\n"
 
 
-def plot(scene_name, scene, runs_by_variant, png_path, nproc):
+def plot(scene_name, scene, runs_by_variant, png_path, nproc, preset=None):
     from matplotlib.figure import Figure     # no pyplot: no GUI backend, no global state
 
     labels = {"rho": r"$L_1(\rho)$", "vx": r"$L_1(v_x)$", "p": r"$L_1(P)$", "u": r"$L_1(u)$",
@@ -457,10 +482,16 @@ def plot(scene_name, scene, runs_by_variant, png_path, nproc):
             for r in runs:
                 ax.annotate(f"N={r.natoms}", (r.wall_s, r.errors[key]), fontsize=7,
                             textcoords="offset points", xytext=(4, 3))
+        if preset is not None and key == scene.fit:
+            ax.loglog([p[1] for p in preset.reference], [p[2] for p in preset.reference], "--k",
+                      marker="x", label=preset.reference_label, ms=6)
+            for n, wall, err in preset.reference:
+                ax.annotate(f"N={n}", (wall, err), fontsize=7, textcoords="offset points",
+                            xytext=(4, -9))
         ax.set_xlabel(f"wall time [s] ({nproc} MPI rank{'s' if nproc > 1 else ''})")
         ax.set_ylabel(labels.get(key, f"L1({key})"))
         ax.grid(True, which="both", alpha=0.3)
-    if len(runs_by_variant) > 1 or next(iter(runs_by_variant)) != "default":
+    if len(runs_by_variant) > 1 or next(iter(runs_by_variant)) != "default" or preset:
         axes[0].legend(fontsize=8)
     fig.suptitle(f"{scene_name}: L1 error vs wall time")
     fig.tight_layout()
@@ -491,9 +522,26 @@ def main(argv=None):
                         help="do not rerun a resolution/variant whose identical earlier run "
                              "(same command) left its log, dump and wall time in OUTDIR/runs; "
                              "re-analyse it (e.g. to add a variant to an existing plot)")
+    parser.add_argument("--preset", default=None,
+                        help="a named comparison of the scene (Sod: 'phantom'): its resolutions, "
+                             "ranks, variables and variants, with the other code's published "
+                             "points as a reference curve")
     args = parser.parse_args(argv)
 
     scene = SCENES[args.scene]
+    preset = None
+    if args.preset is not None:
+        if args.preset not in scene.presets:
+            parser.error(f"scene {args.scene} has no preset '{args.preset}' "
+                         f"(has: {', '.join(sorted(scene.presets)) or 'none'})")
+        preset = scene.presets[args.preset]
+        if args.resolutions is None:
+            args.resolutions = ",".join(str(r) for r in preset.resolutions)
+        if args.variants is None:
+            args.variants = preset.variants
+        if "--np" not in (argv if argv is not None else sys.argv):
+            args.np = preset.np
+        args.var = list(preset.var) + args.var
     res_list = ([int(float(v)) for v in args.resolutions.split(",") if v.strip()]
                 if args.resolutions else list(scene.default_res))
     common = parse_settings(args.var)
@@ -520,11 +568,24 @@ def main(argv=None):
             runs_by_variant[variant].append(run)
 
     table = format_table(args.scene, scene, runs_by_variant, args.np)
+    if preset is not None:
+        fit_label = dict(scene.errors)[scene.fit]
+        table += f"# {preset.notes}\n# {preset.reference_label}: N, wall_s, {fit_label}"
+        table += "".join(f"; {n}, {w:g}, {e:.3g}" for n, w, e in preset.reference) + "\n"
+        for variant, runs in runs_by_variant.items():
+            ratios = []
+            for r in runs:
+                ref = [p for p in preset.reference if p[0] == r.natoms]
+                if ref:
+                    ratios.append(f"N={r.natoms}: {fit_label} {r.errors[scene.fit] / ref[0][2]:.2f}x, "
+                                  f"wall {r.wall_s / ref[0][1]:.2f}x")
+            if ratios:
+                table += f"# {variant} against {preset.reference_label}: " + "; ".join(ratios) + "\n"
     table_path = os.path.join(outdir, f"{args.scene}_table.txt")
     with open(table_path, "w", encoding="utf-8") as f:
         f.write(table)
     png_path = plot(args.scene, scene, runs_by_variant,
-                    os.path.join(outdir, f"{args.scene}_error_vs_time.png"), args.np)
+                    os.path.join(outdir, f"{args.scene}_error_vs_time.png"), args.np, preset)
     print()
     print(table, end="")
     print(f"table: {table_path}\nplot: {png_path}")
