@@ -4,6 +4,7 @@
 Usage (from anywhere; needs numpy and matplotlib, i.e. Debian's /usr/bin/python3)::
 
     /usr/bin/python3 examples/sod_vs_lammps_sph/compare.py [--np 1] [--outdir DIR] [--check]
+        [--var NAME=VALUE ...]   (variables of in.sph_astro, e.g. --var kernel=m6)
 
 Runs, one after the other, ``in.lammps_sph`` (LAMMPS' SPH package, the physics of
 ``examples/PACKAGES/sph/shock_tube/shock3d.lmp``) and ``in.sph_astro`` (SPH-ASTRO on the same
@@ -70,13 +71,16 @@ def load_environment():
     return env, env_sh
 
 
-def run_lammps(key, label, infile, dump, log, np_ranks, outdir, env):
-    """Run one input in outdir; return a dict with status, wall time and the log's loop data."""
+def run_lammps(key, label, infile, dump, log, np_ranks, outdir, env, extra_vars=()):
+    """Run one input in outdir; return a dict with status, wall time and the log's loop data.
+    extra_vars: (name, value) pairs passed as -var name value."""
     for stale in (dump, log):
         if os.path.exists(os.path.join(outdir, stale)):
             os.remove(os.path.join(outdir, stale))
     cmd = ["lmp", "-in", os.path.join(HERE, infile), "-log", log, "-screen", "none",
            "-var", "out", dump]
+    for name, value in extra_vars:
+        cmd += ["-var", name, value]
     if np_ranks > 1:
         cmd = ["mpirun", "-np", str(np_ranks)] + cmd
     load = os.getloadavg()[0]
@@ -192,9 +196,17 @@ def main(argv=None):
     parser.add_argument("--check", action="store_true",
                         help=f"exit 1 unless SPH-ASTRO's L1(rho) and wall time are <= {BAR} x "
                              "the SPH package's")
+    parser.add_argument("--var", action="append", default=[], metavar="NAME=VALUE",
+                        help="LAMMPS variable of the SPH-ASTRO run (in.sph_astro: hmode, hfact, "
+                             "kernel, switch, visc, cond, ...), repeatable")
     args = parser.parse_args(argv)
     if args.np < 1:
         parser.error("--np must be >= 1")
+    astro_vars = []
+    for item in args.var:
+        if "=" not in item:
+            parser.error(f"--var expects NAME=VALUE, got {item!r}")
+        astro_vars.append(tuple(item.split("=", 1)))
 
     env, env_sh = load_environment()
     if env_sh:
@@ -205,7 +217,8 @@ def main(argv=None):
     outdir = os.path.abspath(args.outdir)
     os.makedirs(outdir, exist_ok=True)
 
-    runs = [run_lammps(*spec, args.np, outdir, env) for spec in RUNS]
+    runs = [run_lammps(*spec, args.np, outdir, env, astro_vars if spec[0] == "sph_astro" else ())
+            for spec in RUNS]
     failed = [r["label"] for r in runs if not r["ok"]]
 
     print()

@@ -731,8 +731,8 @@ template <class KERNEL, int DIM, bool CURL> void PairSPHAstro::density_gradh()
     double hlo = 0.0, hhi = INFINITY;    // f(h) = rho(h) - rho_target(h) rises with h
     double h_evaluated = hi;             // rho, Omega and the count belong to this h
     double rhoi = 0.0, dsum = 0.0, ni = 0.0;
-    double curl_sum[4] = {0.0, 0.0, 0.0,
-                          0.0};    // CURL: sum_j m_j v_ij . grad_i W, v_ij x grad_i W
+    // CURL: sum_j m_j v_ij . grad_i W and sum_j m_j v_ij x grad_i W at h_evaluated
+    double curl_sum[4] = {0.0, 0.0, 0.0, 0.0};
     bool converged = false, at_cap = false;
     int it = 0;
     while (it < maxiter) {
@@ -912,7 +912,7 @@ template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
 template <class KERNEL, int DIM, int KFORM> void PairSPHAstro::velocity_curl()
 {
   using K = Kernel<KERNEL, DIM>;
-  constexpr bool GH = KFORM == GRADH;
+  static_assert(KFORM == HMEAN || KFORM == KMEAN, "grad-h: the sums come from density_gradh");
   constexpr bool KM = KFORM == KMEAN;
   double **x = atom->x;
   const int *type = atom->type;
@@ -928,8 +928,8 @@ template <class KERNEL, int DIM, int KFORM> void PairSPHAstro::velocity_curl()
 
   forward_predicted_velocities();
 
-  NeighList *nl = GH ? listfull_ : list;
-  const int nzero = (!GH && newton_pair) ? nall : nlocal;
+  NeighList *nl = list;
+  const int nzero = newton_pair ? nall : nlocal;
   for (int i = 0; i < nzero; i++) dcurl_[i][0] = dcurl_[i][1] = dcurl_[i][2] = dcurl_[i][3] = 0.0;
   for (int ii = 0; ii < nl->inum; ii++) {
     const int i = nl->ilist[ii];
@@ -954,7 +954,7 @@ template <class KERNEL, int DIM, int KFORM> void PairSPHAstro::velocity_curl()
         const double dwj = r2 < hR2j ? inv_h_pow_dim<DIM>(hinvj) * hinvj * K::dw(r * hinvj) : 0.0;
         dw = 0.5 * sigma * (dwi + dwj) / r;
       } else {
-        const double hk = GH ? hi : 0.5 * (hi + h[j]);
+        const double hk = 0.5 * (hi + h[j]);
         if (r2 >= R2 * hk * hk || r2 == 0.0) continue;
         const double r = std::sqrt(r2);
         const double hinv = 1.0 / hk;
@@ -967,16 +967,16 @@ template <class KERNEL, int DIM, int KFORM> void PairSPHAstro::velocity_curl()
                               (dvz * dx - dvx * dz) * dw, (dvx * dy - dvy * dx) * dw};
       for (int k = 0; k < 4; k++) acc[k] += mj * pair[k];
       // the same pair seen from j: v_ji . grad_j W_ji = v_ij . grad_i W_ij, likewise for x
-      if (!GH && (newton_pair || j < nlocal))
+      if (newton_pair || j < nlocal)
         for (int k = 0; k < 4; k++) dcurl_[j][k] += mi * pair[k];
     }
     for (int k = 0; k < 4; k++) dcurl_[i][k] += acc[k];
   }
-  if (!GH && newton_pair) {
+  if (newton_pair) {
     comm_stage_ = Stage::CURL;
     comm->reverse_comm(this, 4);
   }
-  velocity_curl_finish(GH);
+  velocity_curl_finish(false);
 }
 
 // div v, |curl v| and the Balsara factor of the owned particles from the sums in dcurl_
