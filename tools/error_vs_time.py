@@ -508,7 +508,8 @@ def main(argv=None):
     parser.add_argument("--resolutions", default=None,
                         help="comma-separated values of the scene's resolution variable "
                              "(Sod: nx; default 32,48,64,96,128)")
-    parser.add_argument("--np", type=int, default=1, help="MPI ranks per run (default 1)")
+    parser.add_argument("--np", type=int, default=None,
+                        help="MPI ranks per run (default 1, or the preset's)")
     parser.add_argument("--outdir", default=os.path.join(ROOT, "build", "output",
                                                          "error_vs_time"))
     parser.add_argument("--variants", default=None,
@@ -539,9 +540,11 @@ def main(argv=None):
             args.resolutions = ",".join(str(r) for r in preset.resolutions)
         if args.variants is None:
             args.variants = preset.variants
-        if "--np" not in (argv if argv is not None else sys.argv):
+        if args.np is None:
             args.np = preset.np
         args.var = list(preset.var) + args.var
+    if args.np is None:
+        args.np = 1
     res_list = ([int(float(v)) for v in args.resolutions.split(",") if v.strip()]
                 if args.resolutions else list(scene.default_res))
     common = parse_settings(args.var)

@@ -178,11 +178,6 @@ class PairSPHAstro : public Pair {
   {
     return f == HMEAN_GEOMETRIC || f == KMEAN_GEOMETRIC;
   }
-  // the kernel part of a form alone (velocity_curl): HMEAN, GRADH or KMEAN
-  static constexpr int kernel_form(int f)
-  {
-    return form_gradh(f) ? GRADH : (form_kmean(f) ? KMEAN : HMEAN);
-  }
   int pair_form() const;
   template <class KERNEL, int DIM, int KFORM> void velocity_curl();
   void velocity_curl_finish(bool gradh);
