@@ -27,6 +27,10 @@
 //                       du_i/dt = sum_j m_j sqrt(P_i P_j)/(rho_i rho_j) v_ij . grad_i W_ij + visc.
 //                       (seed 000 ibid.; the energy equation in the form of the force, as
 //                       seed 004 eqs. 41-42 pair with eqs. 23 and 26)
+// Keyword reconstruct: the viscosity (only) sees v_ij . r_ij of the velocities reconstructed
+// to the pair midpoint with the linearly exact grad v and a van Leer limiter
+// (sph_astro_reconstruction.h); the energy equation keeps the true v_ij, so the pair still
+// conserves energy.
 
 #include "pair_sph_astro.h"
 #include "pair_sph_astro_force.h"
@@ -35,6 +39,7 @@
 #include "fix_sph_astro_h.h"
 #include "fix_sph_astro_switch.h"
 #include "sph_astro_pair_terms.h"
+#include "sph_astro_reconstruction.h"
 
 #include "sph_astro_pair_coeff.h"
 
@@ -65,8 +70,10 @@ PairSPHAstro::PairSPHAstro(LAMMPS *lmp) : Pair(lmp)
   one_coeff = 1;
   manybody_flag = 1;    // forces depend on densities of both partners
   finitecutflag = 1;    // per-atom cutoffs kernel_radius h_i for neighbor multi collections
-  comm_forward = 11;    // rho, P, c_s, vest[3]; h, Omega; alpha; u (cond.); Balsara f
-  comm_reverse = 4;     // rho, nneigh | dudt, sum v.gradW, max v_sig | div and curl sums
+  // rho, P, c_s, vest[3]; h, Omega; alpha; u (cond.); Balsara f; symmetric grad v, Delta
+  comm_forward = 11 + SPHAstro::VGRAD_DATA;
+  // rho, nneigh | dudt, sum v.gradW, max v_sig | div and curl sums | grad v sums
+  comm_reverse = SPHAstro::VGRAD_SUMS;
 }
 
 PairSPHAstro::~PairSPHAstro()
@@ -82,6 +89,8 @@ PairSPHAstro::~PairSPHAstro()
   memory->destroy(curlv_);
   memory->destroy(balsara_);
   memory->destroy(vsigmax_);
+  memory->destroy(vgsum_);
+  memory->destroy(vgrad_);
   memory->destroy(pgeo_);
   memory->destroy(hcap_type_);
   memory->destroy(conduct_);
@@ -106,7 +115,7 @@ void PairSPHAstro::grow_work_arrays()
 {
   // (re)allocate also when curl v or v_sig became needed after the arrays were made
   if (atom->nmax <= nmax_ && (!curl_on_ || curlv_) && (!signal_viscosity() || vsigmax_) &&
-      (!pressure_geometric_ || pgeo_))
+      (!pressure_geometric_ || pgeo_) && (!reconstruction() || vgrad_))
     return;
   nmax_ = MAX(nmax_, atom->nmax);
   memory->destroy(pressure_);
@@ -126,6 +135,12 @@ void PairSPHAstro::grow_work_arrays()
   }
   if (balsara_on_) memory->create(balsara_, nmax_, "pair:sph/astro:balsara");
   if (signal_viscosity()) memory->create(vsigmax_, nmax_, "pair:sph/astro:vsigmax");
+  memory->destroy(vgsum_);
+  memory->destroy(vgrad_);
+  if (reconstruction()) {
+    memory->create(vgsum_, nmax_, VGRAD_SUMS, "pair:sph/astro:vgsum");
+    memory->create(vgrad_, nmax_, VGRAD_DATA, "pair:sph/astro:vgrad");
+  }
   memory->destroy(pgeo_);
   if (pressure_geometric_) memory->create(pgeo_, nmax_, "pair:sph/astro:pgeo");
   memory->create(pressure_, nmax_, "pair:sph/astro:pressure");
@@ -155,6 +170,9 @@ void PairSPHAstro::settings(int narg, char **arg)
   cond_alpha_ = 0.0;
   balsara_on_ = false;
   visc_signal_ = false;
+  recon_on_ = false;
+  recon_trigger_ = 1.0;
+  recon_gate_ = 16;
   cond_kappa_ = 0.0;
   density_continuity_ = false;
   symmetrise_kernel_ = false;
@@ -256,6 +274,33 @@ void PairSPHAstro::settings(int narg, char **arg)
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_style sph/astro balsara", error);
       balsara_on_ = utils::logical(FLERR, arg[iarg + 1], false, lmp) == 1;
       iarg += 2;
+    } else if (key == "reconstruct") {
+      if (iarg + 2 > narg)
+        utils::missing_cmd_args(FLERR, "pair_style sph/astro reconstruct", error);
+      recon_on_ = utils::logical(FLERR, arg[iarg + 1], false, lmp) == 1;
+      iarg += 2;
+      // optional: trigger T (noise trigger radius, spacings), gate P (smoothness gate)
+      while (iarg < narg && (strcmp(arg[iarg], "trigger") == 0 || strcmp(arg[iarg], "gate") == 0)) {
+        const std::string sub = arg[iarg];
+        if (iarg + 2 > narg)
+          utils::missing_cmd_args(FLERR, "pair_style sph/astro reconstruct " + sub, error);
+        if (sub == "trigger") {
+          recon_trigger_ = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+          if (!(recon_trigger_ >= 0.0) || !std::isfinite(recon_trigger_))
+            error->all(FLERR,
+                       "pair_style sph/astro reconstruct trigger {} must be >= 0 (pairs closer "
+                       "than this many particle spacings get the plain viscosity back; 0: never)",
+                       arg[iarg + 1]);
+        } else {
+          recon_gate_ = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
+          if (recon_gate_ < 0 || recon_gate_ > 64)
+            error->all(FLERR,
+                       "pair_style sph/astro reconstruct gate {} must be an integer in 0-64 (the "
+                       "exponent of the smoothness gate; 0: off, default 16)",
+                       arg[iarg + 1]);
+        }
+        iarg += 2;
+      }
     } else if (key == "conductivity") {
       if (iarg + 2 > narg)
         utils::missing_cmd_args(FLERR, "pair_style sph/astro conductivity", error);
@@ -318,7 +363,8 @@ void PairSPHAstro::settings(int narg, char **arg)
     } else
       error->all(FLERR,
                  "pair_style sph/astro: unknown keyword '{}'; allowed: kernel, eos, viscosity, "
-                 "balsara, conductivity, conduction, epsilon, density, symmetrise, pressure",
+                 "balsara, reconstruct, conductivity, conduction, epsilon, density, symmetrise, "
+                 "pressure",
                  key);
   }
   // the integrated density and its prediction live in their own per-atom state; it is
@@ -327,6 +373,12 @@ void PairSPHAstro::settings(int narg, char **arg)
   kernel_radius_ = SPHAstro::kernel_radius(kernel_);
   if (balsara_on_ && !visc_on_)
     error->all(FLERR, "pair_style sph/astro: balsara yes needs viscosity classic or signal");
+  if (recon_on_ && !visc_on_)
+    error->all(FLERR, "pair_style sph/astro: reconstruct yes needs viscosity classic or signal");
+  if (recon_on_ && balsara_on_)
+    error->all(FLERR,
+               "pair_style sph/astro: reconstruct yes and balsara yes cannot be combined (the "
+               "reconstruction removes the viscosity of a linear shear flow already); use one");
 }
 
 /* ----------------------------------------------------------------------
@@ -688,12 +740,16 @@ void PairSPHAstro::count_neighbours()
      du_i/dt = P_i/(Omega_i rho_i^2) sum_j m_j v_ij . grad_i W_ij(h_i)
                + 1/2 sum_j m_j Pi_ij v_ij . gradbar_i W_ij
    with gradbar W_ij = (grad W(h_i) + grad W(h_j))/2 (seed 000, "average of the kernel
-   contributions"). dW/dh = -sigma/h^(d+1) (d w(q) + q w'(q)). CURL: the same loop also sums
-   m_j v_ij . grad_i W(h_i) and m_j v_ij x grad_i W(h_i) for div v and curl v (velocity_curl).
+   contributions"). dW/dh = -sigma/h^(d+1) (d w(q) + q w'(q)). VSUMS_CURL: the same loop also
+   sums m_j v_ij . grad_i W(h_i) and m_j v_ij x grad_i W(h_i) for div v and curl v
+   (velocity_curl); VSUMS_GRADIENT: the sums M and G of the linearly exact grad v
+   (sph_astro_reconstruction.h), from which div v and curl v follow as well.
 ------------------------------------------------------------------------- */
 
-template <class KERNEL, int DIM, bool CURL> void PairSPHAstro::density_gradh()
+template <class KERNEL, int DIM, int VSUMS> void PairSPHAstro::density_gradh()
 {
+  constexpr bool CURL = VSUMS == VSUMS_CURL;
+  constexpr bool GRADIENT = VSUMS == VSUMS_GRADIENT;
   using K = Kernel<KERNEL, DIM>;
   double **x = atom->x;
   const int *type = atom->type;
@@ -702,7 +758,7 @@ template <class KERNEL, int DIM, bool CURL> void PairSPHAstro::density_gradh()
   double *rho = atom->dvector[state_.rho];
   double *h = atom->dvector[state_.h];
   const tagint *tag = atom->tag;
-  double **vest = CURL ? atom->darray[state_.vest] : nullptr;
+  double **vest = (CURL || GRADIENT) ? atom->darray[state_.vest] : nullptr;
 
   const int inum = listfull_->inum;
   const int *ilist = listfull_->ilist;
@@ -733,6 +789,7 @@ template <class KERNEL, int DIM, bool CURL> void PairSPHAstro::density_gradh()
     double rhoi = 0.0, dsum = 0.0, ni = 0.0;
     // CURL: sum_j m_j v_ij . grad_i W and sum_j m_j v_ij x grad_i W at h_evaluated
     double curl_sum[4] = {0.0, 0.0, 0.0, 0.0};
+    double grad_sum[VGRAD_SUMS] = {};    // GRADIENT: M and G at h_evaluated
     bool converged = false, at_cap = false;
     int it = 0;
     while (it < maxiter) {
@@ -743,6 +800,9 @@ template <class KERNEL, int DIM, bool CURL> void PairSPHAstro::density_gradh()
       const double hR2 = R2 * hi * hi;
       double w_sum = mi * w0, dwh_sum = -mi * DIM * w0;    // self term
       double vgrad[4] = {0.0, 0.0, 0.0, 0.0};    // the same sums over w'(q) / r, at this h
+      double gsum[VGRAD_SUMS];
+      if (GRADIENT)
+        for (int k = 0; k < VGRAD_SUMS; k++) gsum[k] = 0.0;
       ni = 0.0;
       for (int jj = 0; jj < jnum; jj++) {
         const int j = jlist[jj] & NEIGHMASK;
@@ -766,9 +826,14 @@ template <class KERNEL, int DIM, bool CURL> void PairSPHAstro::density_gradh()
           vgrad[2] += (dvz * dx - dvx * dz) * dwr;
           vgrad[3] += (dvx * dy - dvy * dx) * dwr;
         }
+        if (GRADIENT && r2 > 0.0)
+          velocity_gradient_add(gsum, mj * dw / r, vest[i][0] - vest[j][0],
+                                vest[i][1] - vest[j][1], vest[i][2] - vest[j][2], dx, dy, dz);
       }
       if (CURL)    // grad_i W = sigma h^-(d+1) w'(q) r_ij / r
         for (int k = 0; k < 4; k++) curl_sum[k] = norm * hinv * vgrad[k];
+      if (GRADIENT)
+        for (int k = 0; k < VGRAD_SUMS; k++) grad_sum[k] = norm * hinv * gsum[k];
       rhoi = norm * w_sum;
       dsum = norm * hinv * dwh_sum;    // sum_j m_j dW/dh
       h_evaluated = hi;
@@ -806,6 +871,8 @@ template <class KERNEL, int DIM, bool CURL> void PairSPHAstro::density_gradh()
     nneigh_[i] = ni;
     if (CURL)
       for (int k = 0; k < 4; k++) dcurl_[i][k] = curl_sum[k];
+    if (GRADIENT)
+      for (int k = 0; k < VGRAD_SUMS; k++) vgsum_[i][k] = grad_sum[k];
     // h held at the cap does not follow rho: Omega = 1
     omega_[i] = at_cap ? 1.0 : 1.0 + hi / (DIM * rhoi) * dsum;
     if (!(omega_[i] > 0.0)) omega_[i] = 1.0;
@@ -840,11 +907,15 @@ template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
     comm->forward_comm(this, 1);
   }
   counts_step_ = update->ntimestep;    // a density pass counts the neighbours
-  if (form == GRADH && curl_on_) {     // the curl v sums ride on the h iteration's last sum
+  // the velocity sums ride on the h iteration's last sum
+  if (form == GRADH && reconstruction()) {
     forward_predicted_velocities();
-    density_gradh<KERNEL, DIM, true>();
+    density_gradh<KERNEL, DIM, VSUMS_GRADIENT>();
+  } else if (form == GRADH && curl_on_) {
+    forward_predicted_velocities();
+    density_gradh<KERNEL, DIM, VSUMS_CURL>();
   } else if (form == GRADH)
-    density_gradh<KERNEL, DIM, false>();
+    density_gradh<KERNEL, DIM, VSUMS_NONE>();
   else if (!density_continuity_ || integrator_->density_needs_init()) {
     if (symmetrise_kernel_)
       density_sum<KERNEL, DIM, true>();
@@ -859,13 +930,21 @@ template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
   } else
     counts_step_ = -1;    // counted only if asked for (neighbour_counts)
   equation_of_state();
-  if (curl_on_) {
+  if (reconstruction()) {    // grad v (and from it div v and curl v)
+    if (form != GRADH) {
+      if (symmetrise_kernel_)
+        velocity_curl<KERNEL, DIM, KMEAN, VSUMS_GRADIENT>();
+      else
+        velocity_curl<KERNEL, DIM, HMEAN, VSUMS_GRADIENT>();
+    }
+    velocity_gradient_finish<DIM>(form == GRADH);
+  } else if (curl_on_) {
     if (form == GRADH)
       velocity_curl_finish(true);    // sums from density_gradh
     else if (symmetrise_kernel_)
-      velocity_curl<KERNEL, DIM, KMEAN>();
+      velocity_curl<KERNEL, DIM, KMEAN, VSUMS_CURL>();
     else
-      velocity_curl<KERNEL, DIM, HMEAN>();
+      velocity_curl<KERNEL, DIM, HMEAN, VSUMS_CURL>();
   }
   comm_stage_ = Stage::DENSITY;
   comm->forward_comm(this);
@@ -909,11 +988,15 @@ template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
    Only when balsara is on or fix sph/astro/switch needs curl v.
 ------------------------------------------------------------------------- */
 
-template <class KERNEL, int DIM, int KFORM> void PairSPHAstro::velocity_curl()
+template <class KERNEL, int DIM, int KFORM, int VSUMS> void PairSPHAstro::velocity_curl()
 {
   using K = Kernel<KERNEL, DIM>;
   static_assert(KFORM == HMEAN || KFORM == KMEAN, "grad-h: the sums come from density_gradh");
+  static_assert(VSUMS == VSUMS_CURL || VSUMS == VSUMS_GRADIENT, "a pass needs sums to take");
   constexpr bool KM = KFORM == KMEAN;
+  constexpr bool GRADIENT = VSUMS == VSUMS_GRADIENT;
+  constexpr int NS = GRADIENT ? VGRAD_SUMS : 4;
+  double **sums = GRADIENT ? vgsum_ : dcurl_;
   double **x = atom->x;
   const int *type = atom->type;
   const double *rmass = atom->rmass;
@@ -930,7 +1013,8 @@ template <class KERNEL, int DIM, int KFORM> void PairSPHAstro::velocity_curl()
 
   NeighList *nl = list;
   const int nzero = newton_pair ? nall : nlocal;
-  for (int i = 0; i < nzero; i++) dcurl_[i][0] = dcurl_[i][1] = dcurl_[i][2] = dcurl_[i][3] = 0.0;
+  for (int i = 0; i < nzero; i++)
+    for (int k = 0; k < NS; k++) sums[i][k] = 0.0;
   for (int ii = 0; ii < nl->inum; ii++) {
     const int i = nl->ilist[ii];
     const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
@@ -938,7 +1022,8 @@ template <class KERNEL, int DIM, int KFORM> void PairSPHAstro::velocity_curl()
     const double mi = rmass ? rmass[i] : mass[type[i]];
     const int *jlist = nl->firstneigh[i];
     const int jnum = nl->numneigh[i];
-    double acc[4] = {0.0, 0.0, 0.0, 0.0};    // sum v.gradW, sum v x gradW
+    double acc[NS];    // sum v.gradW, sum v x gradW; or the grad v sums M and G
+    for (int k = 0; k < NS; k++) acc[k] = 0.0;
     for (int jj = 0; jj < jnum; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
       const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
@@ -963,20 +1048,56 @@ template <class KERNEL, int DIM, int KFORM> void PairSPHAstro::velocity_curl()
       const double mj = rmass ? rmass[j] : mass[type[j]];
       const double dvx = vest[i][0] - vest[j][0], dvy = vest[i][1] - vest[j][1],
                    dvz = vest[i][2] - vest[j][2];
+      if (GRADIENT) {
+        // M and G take the same sign from both ends of the pair (sph_astro_reconstruction.h)
+        velocity_gradient_add(acc, mj * dw, dvx, dvy, dvz, dx, dy, dz);
+        if (newton_pair || j < nlocal)
+          velocity_gradient_add(sums[j], mi * dw, dvx, dvy, dvz, dx, dy, dz);
+        continue;
+      }
       const double pair[4] = {(dvx * dx + dvy * dy + dvz * dz) * dw, (dvy * dz - dvz * dy) * dw,
                               (dvz * dx - dvx * dz) * dw, (dvx * dy - dvy * dx) * dw};
       for (int k = 0; k < 4; k++) acc[k] += mj * pair[k];
       // the same pair seen from j: v_ji . grad_j W_ji = v_ij . grad_i W_ij, likewise for x
       if (newton_pair || j < nlocal)
-        for (int k = 0; k < 4; k++) dcurl_[j][k] += mi * pair[k];
+        for (int k = 0; k < 4; k++) sums[j][k] += mi * pair[k];
     }
-    for (int k = 0; k < 4; k++) dcurl_[i][k] += acc[k];
+    for (int k = 0; k < NS; k++) sums[i][k] += acc[k];
   }
   if (newton_pair) {
-    comm_stage_ = Stage::CURL;
-    comm->reverse_comm(this, 4);
+    comm_stage_ = GRADIENT ? Stage::VGRAD : Stage::CURL;
+    comm->reverse_comm(this, NS);
   }
-  velocity_curl_finish(false);
+  if (!GRADIENT) velocity_curl_finish(false);
+}
+
+/* ----------------------------------------------------------------------
+   reconstruction: per owned particle the symmetric part of grad v = G M^-1 and the spacing
+   Delta = (m/rho)^(1/d) (sph_astro_reconstruction.h), sent to the ghosts with the density;
+   where curl v is needed too, its sums and those of div v are the antisymmetric part and the
+   trace of G (the same sums velocity_curl takes)
+------------------------------------------------------------------------- */
+
+template <int DIM> void PairSPHAstro::velocity_gradient_finish(bool gradh)
+{
+  const double *rho = eval_density();
+  const int *type = atom->type;
+  const double *rmass = atom->rmass;
+  const double *mass = atom->mass;
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal; i++) {
+    const double *g = vgsum_[i];
+    velocity_gradient_symmetric<DIM>(g, vgrad_[i]);    // 0 where M is singular
+    const double mi = rmass ? rmass[i] : mass[type[i]];
+    vgrad_[i][6] = recon_trigger_ * (DIM == 2 ? std::sqrt(mi / rho[i]) : std::cbrt(mi / rho[i]));
+    if (curl_on_) {    // G[3 a + k] = sum_j w_j v_ij,a r_ij,k at sums index 6 + 3 a + k
+      dcurl_[i][0] = g[6] + g[10] + g[14];
+      dcurl_[i][1] = g[11] - g[13];
+      dcurl_[i][2] = g[12] - g[8];
+      dcurl_[i][3] = g[7] - g[9];
+    }
+  }
+  if (curl_on_) velocity_curl_finish(gradh);
 }
 
 // div v, |curl v| and the Balsara factor of the owned particles from the sums in dcurl_
@@ -1061,6 +1182,7 @@ int PairSPHAstro::pack_forward_comm(int n, int *list, double *buf, int /*pbc_fla
   }
   const bool gradh = hmode_ == HMode::GRADH;
   const bool cond = ghosts_need_u();
+  const bool recon = reconstruction();
   const double *uest = atom->dvector[state_.uest];
   for (int k = 0; k < n; k++) {
     const int j = list[k];
@@ -1077,6 +1199,8 @@ int PairSPHAstro::pack_forward_comm(int n, int *list, double *buf, int /*pbc_fla
     if (alpha_atom_) buf[m++] = alpha_atom_[j];
     if (cond) buf[m++] = uest[j];
     if (balsara_on_) buf[m++] = balsara_[j];
+    if (recon)
+      for (int k = 0; k < VGRAD_DATA; k++) buf[m++] = vgrad_[j][k];
   }
   return m;
 }
@@ -1101,6 +1225,7 @@ void PairSPHAstro::unpack_forward_comm(int n, int first, double *buf)
   }
   const bool gradh = hmode_ == HMode::GRADH;
   const bool cond = ghosts_need_u();
+  const bool recon = reconstruction();
   double *uest = atom->dvector[state_.uest];
   for (int i = first; i < first + n; i++) {
     rho[i] = buf[m++];
@@ -1116,6 +1241,8 @@ void PairSPHAstro::unpack_forward_comm(int n, int first, double *buf)
     if (alpha_atom_) alpha_atom_[i] = buf[m++];
     if (cond) uest[i] = buf[m++];
     if (balsara_on_) balsara_[i] = buf[m++];
+    if (recon)
+      for (int k = 0; k < VGRAD_DATA; k++) vgrad_[i][k] = buf[m++];
   }
 }
 
@@ -1129,6 +1256,11 @@ int PairSPHAstro::pack_reverse_comm(int n, int first, double *buf)
   if (comm_stage_ == Stage::CURL) {
     for (int i = first; i < first + n; i++)
       for (int k = 0; k < 4; k++) buf[m++] = dcurl_[i][k];
+    return m;
+  }
+  if (comm_stage_ == Stage::VGRAD) {
+    for (int i = first; i < first + n; i++)
+      for (int k = 0; k < VGRAD_SUMS; k++) buf[m++] = vgsum_[i][k];
     return m;
   }
   if (comm_stage_ == Stage::COUNT) {
@@ -1163,6 +1295,11 @@ void PairSPHAstro::unpack_reverse_comm(int n, int *list, double *buf)
   if (comm_stage_ == Stage::CURL) {
     for (int k = 0; k < n; k++)
       for (int c = 0; c < 4; c++) dcurl_[list[k]][c] += buf[m++];
+    return;
+  }
+  if (comm_stage_ == Stage::VGRAD) {
+    for (int k = 0; k < n; k++)
+      for (int c = 0; c < VGRAD_SUMS; c++) vgsum_[list[k]][c] += buf[m++];
     return;
   }
   if (comm_stage_ == Stage::COUNT) {
@@ -1214,7 +1351,8 @@ void PairSPHAstro::read_restart(FILE *fp)
 void PairSPHAstro::write_restart_settings(FILE *fp)
 {
   int ival[3] = {static_cast<int>(kernel_), static_cast<int>(eos_.type),
-                 (visc_on_ ? 1 : 0) + (balsara_on_ ? 2 : 0) + (visc_signal_ ? 4 : 0)};
+                 (visc_on_ ? 1 : 0) + (balsara_on_ ? 2 : 0) + (visc_signal_ ? 4 : 0) +
+                     (recon_on_ ? 8 : 0)};
   double dval[7] = {eos_.gamma, eos_.cs, eos_.K, visc_alpha_, visc_beta_, visc_eps_, cond_alpha_};
   fwrite(ival, sizeof(int), 3, fp);
   fwrite(dval, sizeof(double), 7, fp);
@@ -1223,6 +1361,8 @@ void PairSPHAstro::write_restart_settings(FILE *fp)
   const int options =
       (density_continuity_ ? 1 : 0) + (symmetrise_kernel_ ? 2 : 0) + (pressure_geometric_ ? 4 : 0);
   fwrite(&options, sizeof(int), 1, fp);
+  fwrite(&recon_trigger_, sizeof(double), 1, fp);
+  fwrite(&recon_gate_, sizeof(int), 1, fp);
 }
 
 void PairSPHAstro::read_restart_settings(FILE *fp)
@@ -1234,7 +1374,11 @@ void PairSPHAstro::read_restart_settings(FILE *fp)
     utils::sfread(FLERR, dval, sizeof(double), 7, fp, nullptr, error);
     utils::sfread(FLERR, &cond_kappa_, sizeof(double), 1, fp, nullptr, error);
     utils::sfread(FLERR, &options, sizeof(int), 1, fp, nullptr, error);
+    utils::sfread(FLERR, &recon_trigger_, sizeof(double), 1, fp, nullptr, error);
+    utils::sfread(FLERR, &recon_gate_, sizeof(int), 1, fp, nullptr, error);
   }
+  MPI_Bcast(&recon_trigger_, 1, MPI_DOUBLE, 0, world);
+  MPI_Bcast(&recon_gate_, 1, MPI_INT, 0, world);
   MPI_Bcast(&cond_kappa_, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(&options, 1, MPI_INT, 0, world);
   density_continuity_ = (options & 1) != 0;
@@ -1247,6 +1391,7 @@ void PairSPHAstro::read_restart_settings(FILE *fp)
   visc_on_ = (ival[2] & 1) != 0;
   balsara_on_ = (ival[2] & 2) != 0;
   visc_signal_ = (ival[2] & 4) != 0;
+  recon_on_ = (ival[2] & 8) != 0;
   eos_.gamma = dval[0];
   eos_.cs = dval[1];
   eos_.K = dval[2];
@@ -1314,6 +1459,11 @@ void *PairSPHAstro::extract_peratom(const char *name, int &ncol)
   if (strcmp(name, "curlv") == 0) return (void *) (curl_on_ ? curlv_ : nullptr);
   if (strcmp(name, "vsigmax") == 0) return (void *) (signal_viscosity() ? vsigmax_ : nullptr);
   if (strcmp(name, "balsara") == 0) return (void *) (balsara_on_ ? balsara_ : nullptr);
+  // reconstruction: symmetric grad v (xx, yy, zz, xy, xz, yz) and the spacing Delta per atom
+  if (strcmp(name, "vgrad") == 0) {
+    ncol = VGRAD_DATA;
+    return reconstruction() ? (void *) vgrad_ : nullptr;
+  }
   // non-null when omega_ holds grad-h factors (variable h by iteration)
   if (strcmp(name, "omega_valid") == 0) return hmode_ == HMode::GRADH ? (void *) omega_ : nullptr;
   return nullptr;
@@ -1321,6 +1471,8 @@ void *PairSPHAstro::extract_peratom(const char *name, int &ncol)
 
 double PairSPHAstro::memory_usage()
 {
-  return (6.0 + (pgeo_ ? 1.0 : 0.0)) * nmax_ * sizeof(double) + conduct_nmax_ * sizeof(double) +
+  return (6.0 + (pgeo_ ? 1.0 : 0.0) + (vgrad_ ? VGRAD_SUMS + VGRAD_DATA : 0)) * nmax_ *
+      sizeof(double) +
+      conduct_nmax_ * sizeof(double) +
       Pair::memory_usage();
 }

@@ -57,6 +57,8 @@ class PairSPHAstro : public Pair {
   bool has_viscosity() const { return visc_on_; }
   // viscosity signal: Monaghan (1997) form; the Courant criterion then uses max_j v_sig,ij
   bool signal_viscosity() const { return visc_on_ && visc_signal_; }
+  // viscosity on slope-limited reconstructed velocities (keyword reconstruct)
+  bool reconstruction() const { return visc_on_ && recon_on_; }
   double beta_factor() const { return visc_alpha_ > 0.0 ? visc_beta_ / visc_alpha_ : 0.0; }
   // per-particle alpha (owned + ghost) when fix sph/astro/switch is active, else null
   const double *alpha_per_atom() const { return alpha_atom_; }
@@ -94,6 +96,10 @@ class PairSPHAstro : public Pair {
   bool balsara_on_ = false;     // Balsara shear limiter of the viscosity
   bool visc_signal_ = false;    // signal-velocity form (Monaghan 1997) instead of classic
   bool curl_on_ = false;        // curl v needed this run (Balsara or Cullen-Dehnen switch)
+  // viscosity on velocities reconstructed to the pair midpoint (sph_astro_reconstruction.h)
+  bool recon_on_ = false;
+  double recon_trigger_ = 1.0;    // noise trigger radius in particle spacings
+  int recon_gate_ = 16;            // smoothness gate exponent P (0: off)
 
   // the seeds' other choices (fixed h and dh/dt only; doc/pair_sph_astro.rst):
   //   density continuity: drho_i/dt = sum_j m_j v_ij . grad_i W_ij (seed 004 eq. 33),
@@ -150,19 +156,46 @@ class PairSPHAstro : public Pair {
   double *curlv_ = nullptr;         // |curl v|
   double *balsara_ = nullptr;       // Balsara factor f of this step
   double *vsigmax_ = nullptr;       // signal viscosity: max_j v_sig,ij over the kernel
+  double **vgsum_ = nullptr;        // reconstruction: the sums M, G of grad v = G M^-1
+  double **vgrad_ = nullptr;        // reconstruction: symmetric grad v and spacing Delta
 
   bigint computed_step_ = -1;
   int computed_nlocal_ = -1;
 
-  enum class Stage { DENSITY, FORCE, SMOOTHING_LENGTH, VELOCITY, CURL, CONDUCTION, COUNT };
+  enum class Stage {
+    DENSITY,
+    FORCE,
+    SMOOTHING_LENGTH,
+    VELOCITY,
+    CURL,
+    VGRAD,
+    CONDUCTION,
+    COUNT
+  };
   Stage comm_stage_ = Stage::DENSITY;
 
   void allocate();
   void grow_work_arrays();
-  // viscosity variants of the force pass: form (classic/signal) x Balsara limiter
-  enum ViscosityForm { NO_VISCOSITY = 0, CLASSIC = 1, BALSARA = 2, SIGNAL = 3, SIGNAL_BALSARA = 4 };
+  // viscosity variants of the force pass: form (classic/signal) x Balsara limiter or
+  // reconstruction (the two are not combined: a linear shear flow is reconstructed away)
+  enum ViscosityForm {
+    NO_VISCOSITY = 0,
+    CLASSIC = 1,
+    BALSARA = 2,
+    SIGNAL = 3,
+    SIGNAL_BALSARA = 4,
+    CLASSIC_RECONSTRUCT = 5,
+    SIGNAL_RECONSTRUCT = 6
+  };
   static constexpr bool visc_balsara(int v) { return v == BALSARA || v == SIGNAL_BALSARA; }
-  static constexpr bool visc_signal(int v) { return v == SIGNAL || v == SIGNAL_BALSARA; }
+  static constexpr bool visc_signal(int v)
+  {
+    return v == SIGNAL || v == SIGNAL_BALSARA || v == SIGNAL_RECONSTRUCT;
+  }
+  static constexpr bool visc_reconstruct(int v)
+  {
+    return v == CLASSIC_RECONSTRUCT || v == SIGNAL_RECONSTRUCT;
+  }
   // pair forms of the force pass (template parameter FORM): how W_ij is symmetrised and how
   // the pressure term is; grad-h terms come with their own kernels and the standard pressure
   enum PairForm {
@@ -179,11 +212,16 @@ class PairSPHAstro : public Pair {
     return f == HMEAN_GEOMETRIC || f == KMEAN_GEOMETRIC;
   }
   int pair_form() const;
-  template <class KERNEL, int DIM, int KFORM> void velocity_curl();
+  // velocity sums taken with the density (GRADH) or in a pass of their own: none, the div and
+  // curl sums (Balsara, switches), or the full gradient sums (reconstruction; div and curl
+  // follow from them)
+  enum VelocitySums { VSUMS_NONE = 0, VSUMS_CURL = 1, VSUMS_GRADIENT = 2 };
+  template <class KERNEL, int DIM, int KFORM, int VSUMS> void velocity_curl();
   void velocity_curl_finish(bool gradh);
+  template <int DIM> void velocity_gradient_finish(bool gradh);
   void forward_predicted_velocities();
   template <class KERNEL, int DIM, bool KM> void density_sum();
-  template <class KERNEL, int DIM, bool CURL> void density_gradh();
+  template <class KERNEL, int DIM, int VSUMS> void density_gradh();
   void count_neighbours();
   template <class KERNEL, int DIM, int FORM, bool ENERGY, int VISC, bool COND> void force_pass();
   template <class KERNEL, int DIM, int FORM> void dispatch_force();

@@ -12,6 +12,7 @@
 #include "pair_sph_astro.h"
 
 #include "sph_astro_pair_terms.h"
+#include "sph_astro_reconstruction.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -31,7 +32,10 @@ using namespace SPHAstro;
    for GRADH). Pressure term P_i/rho_i^2 + P_j/rho_j^2, or with the geometric forms
    2 sqrt(P_i P_j)/(rho_i rho_j) = 2 g_i g_j, g = sqrt(P)/rho, whose P dV work
    g_i g_j m_j v_ij . grad_i W_ij is summed here pair by pair (seed 000). The dissipative
-   terms are those of sph_astro_pair_terms.h.
+   terms are those of sph_astro_pair_terms.h. With reconstruction (VISC *_RECONSTRUCT) the
+   viscosity sees v_ij^ . r_ij of sph_astro_reconstruction.h instead of v_ij . r_ij; the force
+   it gives is the same pair force along r_ij, and its heating 1/2 m_j Pi_ij v_ij . gradbar W
+   keeps the true v_ij, so energy is conserved pair by pair as before.
 ------------------------------------------------------------------------- */
 
 template <class KERNEL, int DIM, int FORM, bool ENERGY, int VISC, bool COND>
@@ -67,6 +71,8 @@ void PairSPHAstro::force_pass()
   const double beta_factor = alpha > 0.0 ? beta / alpha : 0.0;
   const double alpha_u = cond_alpha_;
   const double *pgeo = pgeo_;    // geometric forms: sqrt(P)/rho of owned and ghost atoms
+  double **vgrad = vgrad_;       // reconstruction: symmetric grad v and spacing (owned + ghost)
+  const int gate = recon_gate_;
 
   for (int i = 0; i < nzero; i++) {
     vdotgradw_[i] = 0.0;
@@ -125,14 +131,20 @@ void PairSPHAstro::force_pass()
         vsigi = MAX(vsigi, vsig);
         if (newton_pair || j < nlocal) vsigmax_[j] = MAX(vsigmax_[j], vsig);
       }
-      if (VISC && vdotr < 0.0) {
+      // the approach speed x r the viscosity acts on
+      const double vdotr_visc = visc_reconstruct(VISC)
+          ? reconstructed_vdotr(vdotr, velocity_slope(vgrad[i], dx, dy, dz),
+                                velocity_slope(vgrad[j], dx, dy, dz), r,
+                                0.5 * (vgrad[i][6] + vgrad[j][6]), MAX(hi, hj), gate)
+          : vdotr;
+      if (VISC && vdotr_visc < 0.0) {
         const double a = alpha_atom ? 0.5 * (alpha_atom[i] + alpha_atom[j]) : alpha;
         const double shear = visc_balsara(VISC) ? 0.5 * (balsara_[i] + balsara_[j]) : 1.0;
         if (visc_signal(VISC))
-          visc =
-              viscosity_signal(vdotr, r, a, beta, ci, soundspeed_[j], 0.5 * (rhoi + rhoj), shear);
+          visc = viscosity_signal(vdotr_visc, r, a, beta, ci, soundspeed_[j], 0.5 * (rhoi + rhoj),
+                                  shear);
         else
-          visc = viscosity_classic(vdotr, r2, hij, a, alpha_atom ? beta_factor * a : beta, eps,
+          visc = viscosity_classic(vdotr_visc, r2, hij, a, alpha_atom ? beta_factor * a : beta, eps,
                                    0.5 * (ci + soundspeed_[j]), 0.5 * (rhoi + rhoj), shear);
       }
       const double pterm = GEO ? pressure_geometric_term(prhoi, prhoj) * dwi
@@ -186,9 +198,9 @@ template <class KERNEL, int DIM, int FORM> void PairSPHAstro::dispatch_force()
   const bool cond = energy && cond_alpha_ > 0.0;
   int visc = NO_VISCOSITY;
   if (visc_on_ && visc_signal_)
-    visc = balsara_on_ ? SIGNAL_BALSARA : SIGNAL;
+    visc = balsara_on_ ? SIGNAL_BALSARA : (recon_on_ ? SIGNAL_RECONSTRUCT : SIGNAL);
   else if (visc_on_)
-    visc = balsara_on_ ? BALSARA : CLASSIC;
+    visc = balsara_on_ ? BALSARA : (recon_on_ ? CLASSIC_RECONSTRUCT : CLASSIC);
 #define SPH_ASTRO_FORCE(E, V, C)              \
   {                                           \
     force_pass<KERNEL, DIM, FORM, E, V, C>(); \
@@ -197,6 +209,8 @@ template <class KERNEL, int DIM, int FORM> void PairSPHAstro::dispatch_force()
 #define SPH_ASTRO_FORCE_VISC(E, C)                                     \
   {                                                                    \
     if (visc == SIGNAL_BALSARA) SPH_ASTRO_FORCE(E, SIGNAL_BALSARA, C); \
+    if (visc == SIGNAL_RECONSTRUCT) SPH_ASTRO_FORCE(E, SIGNAL_RECONSTRUCT, C); \
+    if (visc == CLASSIC_RECONSTRUCT) SPH_ASTRO_FORCE(E, CLASSIC_RECONSTRUCT, C); \
     if (visc == SIGNAL) SPH_ASTRO_FORCE(E, SIGNAL, C);                 \
     if (visc == BALSARA) SPH_ASTRO_FORCE(E, BALSARA, C);               \
     if (visc == CLASSIC) SPH_ASTRO_FORCE(E, CLASSIC, C);               \
