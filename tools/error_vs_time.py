@@ -31,9 +31,11 @@ resolution variable, dump variable, default resolutions, analysis function, erro
 
 ``--variants physics`` runs the scene's own set of physics variants (Sod: fixed h with hfact
 1.5, variable h, variable h with the Morris-Monaghan or the Cullen-Dehnen switch, and the
-signal-velocity viscosity with Cullen-Dehnen; Sedov: constant alpha and both switches; Noh:
-constant alpha, both switches, the signal viscosity, artificial conductivity, and the signal
-viscosity with Cullen-Dehnen and conductivity).
+signal-velocity viscosity with Cullen-Dehnen, and the viscosity on reconstructed velocities;
+Sedov: constant alpha, both switches and the reconstruction; Noh: constant alpha, both
+switches, the signal viscosity, artificial conductivity, the signal viscosity with
+Cullen-Dehnen and conductivity, the reconstruction alone and with the Morris-Monaghan switch
+and conductivity).
 
 Variants: ``--variants`` takes ``;``-separated variants, each a ``,``-separated list of
 ``name=value`` LAMMPS variable settings, e.g. ``'hfact=1.2;hfact=1.5,kernel=m6'``; every variant
@@ -234,7 +236,8 @@ SCENES: Dict[str, Scene] = {
         plot=("rho", "vx", "p"), fit="rho",
         notes="Sod: ny cells across y,z are fixed, so N ~ nx (quasi-1D); errors over |x| < 0.5",
         physics="hmode=fixed,hfact=1.5;hmode=iterate;hmode=iterate,switch=mm;"
-                "hmode=iterate,switch=cd;hmode=iterate,visc=signal,switch=cd",
+                "hmode=iterate,switch=cd;hmode=iterate,visc=signal,switch=cd;"
+                "hmode=iterate,recon=yes",
         presets={"phantom": Preset(
             # Phantom's 3D Sod (../shared/DESIGN.md: gamma 5/3, quintic kernel, 2 OpenMP
             # threads, L1(rho) per particle over |x| < 0.5); ny 8 and these nx give its exact
@@ -262,7 +265,7 @@ SCENES: Dict[str, Scene] = {
         plot=("rho", "rshock"), fit="rho",
         notes="Sedov-Taylor, 3D, t = 0.1: N = 4 n^3; L1 over r < 1.2 R_s; Rs_err: |relative "
               "error| of the shock radius (binned density peak; half height of the jump)",
-        physics="switch=no;switch=mm;switch=cd"),
+        physics="switch=no;switch=mm;switch=cd;recon=yes"),
     "toystar": Scene(
         input="examples/toystar/in.toystar", res_var="n", out_var="out",
         default_res=(8, 12, 16), analyse=analyse_toystar,
@@ -284,7 +287,7 @@ SCENES: Dict[str, Scene] = {
               "0.05 < r < 0.15 / 64 - 1|; R_s_err: |shock radius / 0.2 - 1| (half the measured "
               "post-shock density); u_centre: mean u over r < 0.05",
         physics="switch=no;switch=mm;switch=cd;visc=signal;cond=1.0;"
-                "visc=signal,switch=cd,cond=1.0"),
+                "visc=signal,switch=cd,cond=1.0;recon=yes;recon=yes,switch=mm,cond=1.0"),
 }
 
 

@@ -493,8 +493,9 @@ static double central_heating(const std::string &pair, const std::string &hmode)
 {
   auto lmp = open_lammps();
   gas(lmp, "ball", 6, pair, "sph/astro", 1e-3);
-  commands(lmp, {"variable vx atom -x", "variable vy atom -y", "variable vz atom -z",
-                 "velocity all set v_vx v_vy v_vz"});
+  commands(lmp,
+           {"variable vx atom -x", "variable vy atom -y", "variable vz atom -z",
+            "velocity all set v_vx v_vy v_vz"});
   if (!hmode.empty()) commands(lmp, {hmode});
   commands(lmp, {"run 0"});
   const auto dudt = per_atom(lmp, "dudt");
@@ -543,9 +544,10 @@ TEST(PairSPHAstro, ReconstructionConservesMomentumAndEnergy)
         "sph/astro kernel m4 eos ideal $(5.0/3.0) viscosity classic 1.0 2.0 reconstruct yes",
         "sph/astro courant 0.3", 0.1);
     // converging with a twist, so that slopes differ from pair to pair
-    commands(lmp, {"variable vx atom -0.5*x-0.2*y*z", "variable vy atom -0.5*y+0.3*x",
-                   "variable vz atom -0.5*z+0.1*x*y", "velocity all set v_vx v_vy v_vz",
-                   "velocity all zero linear"});
+    commands(lmp,
+             {"variable vx atom -0.5*x-0.2*y*z", "variable vy atom -0.5*y+0.3*x",
+              "variable vz atom -0.5*z+0.1*x*y", "velocity all set v_vx v_vy v_vz",
+              "velocity all zero linear"});
     if (!hmode.empty()) commands(lmp, {hmode});
     commands(lmp, {"run 0"});
     const auto start = global_vector(lmp, "sum", 12);
@@ -577,15 +579,17 @@ TEST(PairSPHAstro, ReconstructionComesBackFromARestart)
     gas(lmp, "box", 3,
         "sph/astro kernel m4 eos ideal $(5.0/3.0) viscosity classic 1.0 2.0 reconstruct yes",
         "sph/astro courant 0.3");
-    commands(lmp, {"velocity all create 0.3 4321 dist gaussian", hvar, "run 20",
-                   "write_restart " + restart, "run 20"});
+    commands(lmp,
+             {"velocity all create 0.3 4321 dist gaussian", hvar, "run 20",
+              "write_restart " + restart, "run 20"});
     x_ref = per_atom(lmp, "x", 0);
     u_ref = per_atom(lmp, "u");
   }
   auto lmp = open_lammps();
-  commands(lmp, {"read_restart " + restart, "fix gas all sph/astro courant 0.3",
-                 "neighbor " + num(0.3 * 1.2 * std::cbrt(0.25)) + " bin",
-                 "neigh_modify every 1 delay 0 check yes", hvar, "run 20"});
+  commands(lmp,
+           {"read_restart " + restart, "fix gas all sph/astro courant 0.3",
+            "neighbor " + num(0.3 * 1.2 * std::cbrt(0.25)) + " bin",
+            "neigh_modify every 1 delay 0 check yes", hvar, "run 20"});
   int ncol;
   EXPECT_NE(lmp->force->pair->extract_peratom("vgrad", ncol), nullptr);
   EXPECT_EQ(ncol, 7);

@@ -827,8 +827,8 @@ template <class KERNEL, int DIM, int VSUMS> void PairSPHAstro::density_gradh()
           vgrad[3] += (dvx * dy - dvy * dx) * dwr;
         }
         if (GRADIENT && r2 > 0.0)
-          velocity_gradient_add(gsum, mj * dw / r, vest[i][0] - vest[j][0],
-                                vest[i][1] - vest[j][1], vest[i][2] - vest[j][2], dx, dy, dz);
+          velocity_gradient_add(gsum, mj * dw / r, vest[i][0] - vest[j][0], vest[i][1] - vest[j][1],
+                                vest[i][2] - vest[j][2], dx, dy, dz);
       }
       if (CURL)    // grad_i W = sigma h^-(d+1) w'(q) r_ij / r
         for (int k = 0; k < 4; k++) curl_sum[k] = norm * hinv * vgrad[k];
@@ -1473,6 +1473,5 @@ double PairSPHAstro::memory_usage()
 {
   return (6.0 + (pgeo_ ? 1.0 : 0.0) + (vgrad_ ? VGRAD_SUMS + VGRAD_DATA : 0)) * nmax_ *
       sizeof(double) +
-      conduct_nmax_ * sizeof(double) +
-      Pair::memory_usage();
+      conduct_nmax_ * sizeof(double) + Pair::memory_usage();
 }

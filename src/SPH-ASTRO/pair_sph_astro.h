@@ -99,7 +99,7 @@ class PairSPHAstro : public Pair {
   // viscosity on velocities reconstructed to the pair midpoint (sph_astro_reconstruction.h)
   bool recon_on_ = false;
   double recon_trigger_ = 1.0;    // noise trigger radius in particle spacings
-  int recon_gate_ = 16;            // smoothness gate exponent P (0: off)
+  int recon_gate_ = 16;           // smoothness gate exponent P (0: off)
 
   // the seeds' other choices (fixed h and dh/dt only; doc/pair_sph_astro.rst):
   //   density continuity: drho_i/dt = sum_j m_j v_ij . grad_i W_ij (seed 004 eq. 33),
@@ -162,16 +162,7 @@ class PairSPHAstro : public Pair {
   bigint computed_step_ = -1;
   int computed_nlocal_ = -1;
 
-  enum class Stage {
-    DENSITY,
-    FORCE,
-    SMOOTHING_LENGTH,
-    VELOCITY,
-    CURL,
-    VGRAD,
-    CONDUCTION,
-    COUNT
-  };
+  enum class Stage { DENSITY, FORCE, SMOOTHING_LENGTH, VELOCITY, CURL, VGRAD, CONDUCTION, COUNT };
   Stage comm_stage_ = Stage::DENSITY;
 
   void allocate();

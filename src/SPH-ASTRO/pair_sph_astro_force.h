@@ -35,7 +35,8 @@ using namespace SPHAstro;
    terms are those of sph_astro_pair_terms.h. With reconstruction (VISC *_RECONSTRUCT) the
    viscosity sees v_ij^ . r_ij of sph_astro_reconstruction.h instead of v_ij . r_ij; the force
    it gives is the same pair force along r_ij, and its heating 1/2 m_j Pi_ij v_ij . gradbar W
-   keeps the true v_ij, so energy is conserved pair by pair as before.
+   keeps the true v_ij, so energy is conserved pair by pair as before. It acts only on pairs
+   that approach both truly and reconstructed, so that heating is never negative.
 ------------------------------------------------------------------------- */
 
 template <class KERNEL, int DIM, int FORM, bool ENERGY, int VISC, bool COND>
@@ -137,7 +138,9 @@ void PairSPHAstro::force_pass()
                                 velocity_slope(vgrad[j], dx, dy, dz), r,
                                 0.5 * (vgrad[i][6] + vgrad[j][6]), MAX(hi, hj), gate)
           : vdotr;
-      if (VISC && vdotr_visc < 0.0) {
+      // with reconstruction, only pairs that approach in both senses: the heating uses the
+      // true v_ij . r_ij, so it stays >= 0 pair by pair
+      if (VISC && vdotr_visc < 0.0 && (!visc_reconstruct(VISC) || vdotr < 0.0)) {
         const double a = alpha_atom ? 0.5 * (alpha_atom[i] + alpha_atom[j]) : alpha;
         const double shear = visc_balsara(VISC) ? 0.5 * (balsara_[i] + balsara_[j]) : 1.0;
         if (visc_signal(VISC))
@@ -206,15 +209,15 @@ template <class KERNEL, int DIM, int FORM> void PairSPHAstro::dispatch_force()
     force_pass<KERNEL, DIM, FORM, E, V, C>(); \
     return;                                   \
   }
-#define SPH_ASTRO_FORCE_VISC(E, C)                                     \
-  {                                                                    \
-    if (visc == SIGNAL_BALSARA) SPH_ASTRO_FORCE(E, SIGNAL_BALSARA, C); \
-    if (visc == SIGNAL_RECONSTRUCT) SPH_ASTRO_FORCE(E, SIGNAL_RECONSTRUCT, C); \
+#define SPH_ASTRO_FORCE_VISC(E, C)                                               \
+  {                                                                              \
+    if (visc == SIGNAL_BALSARA) SPH_ASTRO_FORCE(E, SIGNAL_BALSARA, C);           \
+    if (visc == SIGNAL_RECONSTRUCT) SPH_ASTRO_FORCE(E, SIGNAL_RECONSTRUCT, C);   \
     if (visc == CLASSIC_RECONSTRUCT) SPH_ASTRO_FORCE(E, CLASSIC_RECONSTRUCT, C); \
-    if (visc == SIGNAL) SPH_ASTRO_FORCE(E, SIGNAL, C);                 \
-    if (visc == BALSARA) SPH_ASTRO_FORCE(E, BALSARA, C);               \
-    if (visc == CLASSIC) SPH_ASTRO_FORCE(E, CLASSIC, C);               \
-    SPH_ASTRO_FORCE(E, NO_VISCOSITY, C);                               \
+    if (visc == SIGNAL) SPH_ASTRO_FORCE(E, SIGNAL, C);                           \
+    if (visc == BALSARA) SPH_ASTRO_FORCE(E, BALSARA, C);                         \
+    if (visc == CLASSIC) SPH_ASTRO_FORCE(E, CLASSIC, C);                         \
+    SPH_ASTRO_FORCE(E, NO_VISCOSITY, C);                                         \
   }
   if (cond) SPH_ASTRO_FORCE_VISC(true, true);
   if (energy) SPH_ASTRO_FORCE_VISC(true, false);

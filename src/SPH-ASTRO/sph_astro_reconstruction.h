@@ -152,8 +152,7 @@ inline double reconstructed_vdotr(double vdotr, double si, double sj, double r, 
                                   double hmax, int gate = 0)
 {
   double phi = van_leer_limiter(si, sj);
-  if (gate > 0 && phi > 0.0)
-    phi *= integer_power(van_leer_limiter(0.5 * (si + sj), vdotr), gate);
+  if (gate > 0 && phi > 0.0) phi *= integer_power(van_leer_limiter(0.5 * (si + sj), vdotr), gate);
   if (phi > 0.0 && r < delta) {
     const double e = (r - delta) / (0.2 * hmax);
     phi *= std::exp(-e * e);
