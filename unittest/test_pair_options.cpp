@@ -320,7 +320,11 @@ TEST_F(BadOptionInput, KeywordValuesNameTheStyleTheValueAndTheChoices)
   expect_error("pair_style sph/astro pressure", "Illegal pair_style sph/astro pressure");
   expect_error("pair_style sph/astro symmetrize kernel",
                "unknown keyword 'symmetrize'; allowed: kernel, eos, viscosity, balsara, "
-               "conductivity, conduction, epsilon, density, symmetrise, pressure");
+               "reconstruct, conductivity, conduction, epsilon, density, symmetrise, pressure");
+  expect_error("pair_style sph/astro reconstruct yes gate 100",
+               "reconstruct gate 100 must be an integer in 0-64");
+  expect_error("pair_style sph/astro reconstruct yes trigger -1",
+               "reconstruct trigger -1 must be >= 0");
 }
 
 TEST_F(BadOptionInput, OptionsNeedFixedOrDhdtSmoothingLengths)
