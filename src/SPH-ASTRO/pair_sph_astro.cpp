@@ -28,9 +28,9 @@
 //                       (seed 000 ibid.; the energy equation in the form of the force, as
 //                       seed 004 eqs. 41-42 pair with eqs. 23 and 26)
 // Keyword reconstruct: the viscosity (only) sees v_ij . r_ij of the velocities reconstructed
-// to the pair midpoint with the linearly exact grad v and a van Leer limiter
-// (sph_astro_reconstruction.h); the energy equation keeps the true v_ij, so the pair still
-// conserves energy.
+// to the pair midpoint with the linearly exact grad v, a van Leer limiter, a noise trigger and
+// a smoothness gate (sph_astro_reconstruction.h); the energy equation keeps the true v_ij, so
+// the pair still conserves energy.
 
 #include "pair_sph_astro.h"
 #include "pair_sph_astro_force.h"
@@ -985,7 +985,9 @@ template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
    with W(h_i) (GRADH: the sums are taken in density_gradh's last evaluation, at the h it keeps,
    over the same full list; no pass of their own) or over the half list with W(h_ij) (HMEAN) or
    the averaged (W(h_i) + W(h_j))/2 (KMEAN: one neighbour loop and a reverse communication).
-   Only when balsara is on or fix sph/astro/switch needs curl v.
+   Only when balsara is on or fix sph/astro/switch needs curl v. VSUMS_GRADIENT (keyword
+   reconstruct): the same loop takes the sums M and G of grad v instead (velocity_gradient_finish
+   derives the div and curl sums from G).
 ------------------------------------------------------------------------- */
 
 template <class KERNEL, int DIM, int KFORM, int VSUMS> void PairSPHAstro::velocity_curl()
@@ -1200,7 +1202,7 @@ int PairSPHAstro::pack_forward_comm(int n, int *list, double *buf, int /*pbc_fla
     if (cond) buf[m++] = uest[j];
     if (balsara_on_) buf[m++] = balsara_[j];
     if (recon)
-      for (int k = 0; k < VGRAD_DATA; k++) buf[m++] = vgrad_[j][k];
+      for (int c = 0; c < VGRAD_DATA; c++) buf[m++] = vgrad_[j][c];
   }
   return m;
 }
@@ -1242,7 +1244,7 @@ void PairSPHAstro::unpack_forward_comm(int n, int first, double *buf)
     if (cond) uest[i] = buf[m++];
     if (balsara_on_) balsara_[i] = buf[m++];
     if (recon)
-      for (int k = 0; k < VGRAD_DATA; k++) vgrad_[i][k] = buf[m++];
+      for (int c = 0; c < VGRAD_DATA; c++) vgrad_[i][c] = buf[m++];
   }
 }
 
