@@ -96,8 +96,12 @@ def dt_estimate(h, c, v=0.0, alpha=1.0, beta=2.0, courant=0.3):
     return courant * h / (c + v + 1.2 * (alpha * c + beta * v))
 
 
+# further pair_style sph/astro keywords for every case (--pair-options, e.g. "reconstruct yes")
+PAIR_OPTIONS = ""
+
+
 def pair_and_fixes(tend, dt0, thermal="energy", margin=1.5, hfact=1.2, extra=""):
-    return f"""pair_style      sph/astro kernel m4 eos ideal {GAMMA:.10g} viscosity classic 1.0 2.0
+    return f"""pair_style      sph/astro kernel m4 eos ideal {GAMMA:.10g} viscosity classic 1.0 2.0 {PAIR_OPTIONS}
 pair_coeff      * *
 fix             gas all sph/astro courant 0.3 tend {tend} dtmin {1e-9 * dt0:.3g} thermal {thermal}
 fix             hvar all sph/astro/h iterate hfact {hfact} margin {margin}
@@ -573,7 +577,12 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("workdir", help="directory for the inputs, logs and dumps")
     parser.add_argument("--only", default=None, help="comma-separated case names")
+    parser.add_argument("--pair-options", default="",
+                        help="further pair_style sph/astro keywords for every case, e.g. "
+                             "'reconstruct yes'")
     args = parser.parse_args(argv)
+    global PAIR_OPTIONS
+    PAIR_OPTIONS = args.pair_options
     env = lammps_environment()
     os.makedirs(args.workdir, exist_ok=True)
     root = os.path.abspath(args.workdir)

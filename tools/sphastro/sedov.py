@@ -305,13 +305,17 @@ def shock_measures(r, rho, rs, rho0=1.0, nbins=60, rmax_factor=1.2):
             r_peak += 0.5 * (y0 - y2) / curv * (edges[1] - edges[0])
     level = 0.5 * (rho0 + rho_peak)
     r_half = float("nan")
-    for j in range(k, nbins - 1):
-        if counts[j + 1] == 0:
+    # between consecutive non-empty bins: on a coarse lattice a bin may hold no particle, and
+    # the crossing may straddle it
+    prev = k
+    for j in range(k + 1, nbins):
+        if counts[j] == 0:
             continue
-        if means[j] >= level > means[j + 1]:
-            frac = (means[j] - level) / (means[j] - means[j + 1])
-            r_half = float(centres[j] + frac * (centres[j + 1] - centres[j]))
+        if means[prev] >= level > means[j]:
+            frac = (means[prev] - level) / (means[prev] - means[j])
+            r_half = float(centres[prev] + frac * (centres[j] - centres[prev]))
             break
+        prev = j
     return {"rho_peak": rho_peak, "r_peak": r_peak, "r_half": r_half,
             "bin_width": float(edges[1] - edges[0]), "centres": centres, "means": means,
             "counts": counts}

@@ -155,5 +155,19 @@ class ProfileTest(unittest.TestCase):
         self.assertLess(abs(sedov.xi0(2.0) - 0.5 * (sedov.xi0(1.999) + sedov.xi0(2.001))), 1e-7)
 
 
+class ShockMeasuresTest(unittest.TestCase):
+    def test_half_height_across_an_empty_bin(self):
+        # a step from 2 to 1 at r = 0.5, sampled with a gap between 0.48 and 0.52: the bin
+        # that holds the gap is empty, the crossing of 1.5 lies across it
+        r = np.concatenate([np.linspace(0.01, 0.479, 200), np.linspace(0.521, 0.59, 40)])
+        rho = np.where(r < 0.5, 2.0, 1.0)
+        res = sedov.shock_measures(r, rho, rs=0.5, rho0=1.0, nbins=60)
+        self.assertEqual(res["rho_peak"], 2.0)
+        self.assertTrue(np.any(res["counts"] == 0))
+        self.assertTrue(math.isfinite(res["r_half"]))
+        self.assertGreater(res["r_half"], 0.47)
+        self.assertLess(res["r_half"], 0.53)
+
+
 if __name__ == "__main__":
     unittest.main()
