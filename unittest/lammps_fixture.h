@@ -100,6 +100,19 @@ inline void gas(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp, const std::string
             "thermo_style custom step c_sum[11]", "timestep 0.002"});
 }
 
+// sum of m |v| over the local atoms: the scale that momentum round-off is measured against
+inline double momentum_scale(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp)
+{
+  const auto *atom = lmp->atom;
+  double sum = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) {
+    const double m = atom->rmass ? atom->rmass[i] : atom->mass[atom->type[i]];
+    const double *v = atom->v[i];
+    sum += m * std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  }
+  return sum;
+}
+
 // global vector of a compute, as last evaluated (thermo evaluates it on the
 // last step)
 inline std::vector<double> global_vector(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp,

@@ -116,12 +116,7 @@ TEST_P(PairOption, ForcesAreAntisymmetricAndMomentumIsConserved)
   const auto start = global_vector(lmp, "sum", 12);
   commands(lmp, {"run 200"});
   const auto end = global_vector(lmp, "sum", 12);
-  double pscale = 0;
-  for (int i = 0; i < lmp->atom->nlocal; i++)
-    pscale += 0.25 *
-        std::sqrt(lmp->atom->v[i][0] * lmp->atom->v[i][0] +
-                  lmp->atom->v[i][1] * lmp->atom->v[i][1] +
-                  lmp->atom->v[i][2] * lmp->atom->v[i][2]);
+  const double pscale = momentum_scale(lmp);
   ASSERT_GT(pscale, 0.0);
   for (int k : {PX, PY, PZ}) EXPECT_LT(std::fabs(end[k] - start[k]), 1e-12 * pscale) << k;
   for (int k : {LX, LY, LZ}) EXPECT_LT(std::fabs(end[k] - start[k]), 1e-11 * pscale) << k;
