@@ -251,16 +251,16 @@ TEST(FixSPHAstroH, CollectionsKeepTheListsOfSmallSmoothingLengthsShort)
 // wide enough from the start
 static std::map<int, double> expanding_ball(const std::string &hfix, const std::string &nbin,
                                             const std::string &run, std::vector<double> &stats,
-                                            double skin = 0.1)
+                                            double skin = 0.1, const std::string &pair = PAIR)
 {
   auto lmp = open_lammps();
-  gas(lmp, "ball", 6, PAIR, "sph/astro dt fixed", 1.0, 0.04);
+  gas(lmp, "ball", 6, pair, "sph/astro dt fixed", 1.0, 0.04);
   commands(lmp,
            {hfix + " tol 1e-10", "neighbor " + num(skin) + " " + nbin,
             "neigh_modify every 1 delay 0 check yes one 10000", "timestep 0.004", run});
   auto *fix = lmp->modify->get_fix_by_id("hvar");
   stats.clear();
-  for (int k = 0; k < 6; k++) stats.push_back(fix->compute_vector(k));
+  for (int k = 0; k < 9; k++) stats.push_back(fix->compute_vector(k));
   return per_atom(lmp, "x", 0);
 }
 
@@ -274,13 +274,14 @@ TEST(FixSPHAstroH, ListsFollowGrowingSmoothingLengths)
   expanding_ball("fix hvar all sph/astro/h iterate margin 1.3", "bin", "run 150", stats);
   EXPECT_GT(stats[3], 0.0);
   // margin 1.3 with rebuild (and collections, with a skin wide enough that the lists are
-  // rebuilt because h outgrows its collection, not only because atoms move): no particle at
-  // the cap, the same trajectory
+  // rebuilt because h outgrows its collection, not only because atoms move, and without the
+  // pruned lists, whose list builds would come first): no particle at the cap, the same
+  // trajectory
   for (const std::string &variant : {"rebuild 0.9", "rebuild 0.9 collections auto"}) {
     const bool coll = variant.find("collections") != std::string::npos;
-    const auto x =
-        expanding_ball("fix hvar all sph/astro/h iterate margin 1.3 " + variant,
-                       coll ? "multi" : "bin", "sph/astro/run 150", stats, coll ? 0.8 : 0.1);
+    const auto x = expanding_ball("fix hvar all sph/astro/h iterate margin 1.3 " + variant,
+                                  coll ? "multi" : "bin", "sph/astro/run 150", stats,
+                                  coll ? 0.8 : 0.1, std::string(PAIR) + (coll ? " prune no" : ""));
     printf("%s: %.0f runs ended for a rebuild, %.0f collection rebuilds, capped %.0f\n",
            variant.c_str(), stats[4], stats[5], stats[3]);
     EXPECT_GE(stats[4], 1.0) << variant;
@@ -292,6 +293,115 @@ TEST(FixSPHAstroH, ListsFollowGrowingSmoothingLengths)
     // the same to the h tolerance: a round-off change can add a Newton iteration
     EXPECT_LT(worst, 1e-8) << variant;
   }
+}
+
+// pruned lists (pair sph/astro prune, sph_astro_pruned_list.h): the same sums in the same order
+// as over LAMMPS' lists, so the same run bit for bit while the pruning adds no list build. A
+// periodic box of gas with 20 % pressure differences: h changes little; with fix sph/astro/h
+// the lists carry the h cap (margin 1.5), which the pruned lists leave out
+TEST(PrunedLists, GiveTheRunOfLAMMPSListsBitForBit)
+{
+  for (const std::string hfix :
+       {"", "fix hvar all sph/astro/h dhdt", "fix hvar all sph/astro/h iterate"}) {
+    std::map<std::string, std::map<int, double>> result[2];
+    double lengths[2][3] = {};
+    for (int prune : {0, 1}) {
+      auto lmp = open_lammps();
+      gas(lmp, "box", 4, std::string(PAIR) + (prune ? " prune yes" : " prune no"),
+          "sph/astro courant 0.3", 1.0, 0.04);
+      if (!hfix.empty()) commands(lmp, {hfix});
+      commands(lmp, {"run 60"});
+      for (const char *field : {"u", "h", "rho"}) result[prune][field] = per_atom(lmp, field, 0);
+      for (int c = 0; c < 3; c++) {
+        result[prune]["x" + std::to_string(c)] = per_atom(lmp, "x", c);
+        result[prune]["v" + std::to_string(c)] = per_atom(lmp, "v", c);
+      }
+      int dim;
+      const auto *pruned =
+          static_cast<double *>(lmp->force->pair->extract("pruned_list_lengths", dim));
+      ASSERT_NE(pruned, nullptr);
+      lengths[prune][0] = list_lengths(lmp, 0).first;
+      lengths[prune][1] = pruned[0];
+      lengths[prune][2] = pruned[1];
+      if (!hfix.empty()) {
+        auto *fix = lmp->modify->get_fix_by_id("hvar");
+        EXPECT_EQ(fix->compute_vector(6), 0.0) << hfix;    // no build added for the pruning
+        EXPECT_EQ(fix->compute_vector(7), 0.0) << hfix;    // no pass on LAMMPS' lists
+        EXPECT_EQ(fix->compute_vector(8), 0.0) << hfix;
+      }
+    }
+    printf("%s: LAMMPS half list %.1f per atom, pruned %.1f (full %.1f); without pruning %.1f\n",
+           hfix.empty() ? "fixed h" : hfix.c_str(), lengths[1][0], lengths[1][1], lengths[1][2],
+           lengths[0][1]);
+    EXPECT_EQ(lengths[0][1], 0.0);    // prune no: no pruned list
+    EXPECT_GT(lengths[1][1], 0.0);
+    // fixed h without fix sph/astro/h: no margin, LAMMPS' lists hold only the skin more
+    if (!hfix.empty()) EXPECT_LT(lengths[1][1], 0.6 * lengths[1][0]) << hfix;
+    for (const auto &[field, values] : result[0]) {
+      ASSERT_EQ(values.size(), result[1][field].size());
+      for (const auto &[id, value] : values)
+        ASSERT_EQ(value, result[1][field].at(id)) << hfix << " " << field << " atom " << id;
+    }
+  }
+}
+
+// an expanding hot ball (h grows to 1.5 x its start): the setup's h iteration takes the
+// surface h past the pruned limit (those iterations use LAMMPS' lists); after that fix
+// sph/astro/h has LAMMPS build the lists in time, so no half-list pass falls back (a few
+// surface atoms' Newton or bisection trials overshoot the limit and finish on LAMMPS' list),
+// and the trajectory is that of prune no to round-off (the added list builds reorder the sums)
+TEST(PrunedLists, FollowGrowingSmoothingLengths)
+{
+  std::map<int, double> x[2];
+  double at_setup[2][2] = {}, after[2][3] = {}, natoms = 0.0;
+  for (int prune : {0, 1}) {
+    auto lmp = open_lammps();
+    gas(lmp, "ball", 6, std::string(PAIR) + (prune ? " prune yes" : " prune no"),
+        "sph/astro dt fixed", 1.0, 0.04);
+    commands(lmp,
+             {"fix hvar all sph/astro/h iterate margin 4.0 tol 1e-10", "neighbor 0.1 bin",
+              "neigh_modify every 1 delay 0 check yes one 10000", "timestep 0.004", "run 0"});
+    auto *fix = lmp->modify->get_fix_by_id("hvar");
+    at_setup[prune][0] = fix->compute_vector(7);
+    at_setup[prune][1] = fix->compute_vector(8);
+    commands(lmp, {"run 150"});
+    for (int k = 0; k < 3; k++) after[prune][k] = fix->compute_vector(6 + k);
+    EXPECT_EQ(fix->compute_vector(3), 0.0);    // nobody at the h cap
+    x[prune] = per_atom(lmp, "x", 0);
+    natoms = static_cast<double>(lmp->atom->natoms);
+  }
+  printf("expanding ball: %.0f list builds forced by the pruned lists; fallbacks at the first "
+         "setup %.0f passes, %.0f atoms; after 150 steps %.0f, %.0f\n",
+         after[1][0], at_setup[1][0], at_setup[1][1], after[1][1], after[1][2]);
+  EXPECT_EQ(after[0][0] + after[0][1] + after[0][2], 0.0);    // prune no: nothing to count
+  EXPECT_GE(after[1][0], 1.0);
+  EXPECT_EQ(after[1][1], at_setup[1][0]);
+  EXPECT_LT(after[1][2] - at_setup[1][1], 0.01 * 150 * natoms);
+  double worst = 0.0;
+  for (const auto &[id, value] : x[0]) worst = std::max(worst, std::fabs(x[1].at(id) - value));
+  EXPECT_LT(worst, 1e-8);
+}
+
+// an h raised past the pruned limit between runs, with run pre no (no list build): the passes
+// use LAMMPS' lists for it, and the result is that of prune no bit for bit
+TEST(PrunedLists, FallBackToLAMMPSListsForAnHBeyondTheLimit)
+{
+  std::map<int, double> rho[2];
+  double fallbacks[2] = {0.0, 0.0};
+  const double h_raised = 1.6 * 1.2 * std::cbrt(0.25);
+  for (int prune : {0, 1}) {
+    auto lmp = open_lammps();
+    gas(lmp, "box", 4, std::string(PAIR) + (prune ? " prune yes" : " prune no"),
+        "sph/astro courant 0.3", 1.0, 0.04);
+    commands(lmp,
+             {"fix hvar all sph/astro/h dhdt margin 3.0", "run 5",
+              "set atom 1*40 d_h " + num(h_raised), "run 1 pre no"});
+    rho[prune] = per_atom(lmp, "rho", 0);
+    fallbacks[prune] = lmp->modify->get_fix_by_id("hvar")->compute_vector(7);
+  }
+  EXPECT_EQ(fallbacks[0], 0.0);
+  EXPECT_GE(fallbacks[1], 1.0);
+  for (const auto &[id, value] : rho[0]) ASSERT_EQ(value, rho[1].at(id)) << "atom " << id;
 }
 
 TEST(FixSPHAstroH, DhdtFollowsTheDivergence)

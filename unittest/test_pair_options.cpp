@@ -197,7 +197,7 @@ TEST_P(PairOption, RestartContinuesBitForBit)
 
 INSTANTIATE_TEST_SUITE_P(PairSPHAstro, PairOption,
                          ::testing::Values("", "density continuity", "symmetrise kernel",
-                                           "pressure geometric",
+                                           "pressure geometric", "prune no",
                                            "density continuity symmetrise kernel pressure "
                                            "geometric"));
 
@@ -226,6 +226,29 @@ TEST(PairOptions, SettingsComeBackFromARestartFile)
                              "sph/astro/h dhdt"),
                 std::string::npos)
           << option << ": " << message;
+  }
+  std::remove(restart.c_str());
+}
+
+TEST(PairOptions, PruneNoComesBackFromARestartFile)
+{
+  const std::string restart = "test_pair_options_prune.restart";
+  for (const std::string option : {"prune no", "prune yes"}) {
+    {
+      auto lmp = open_lammps();
+      gas(lmp, "box", 2, GAS + " " + option, "sph/astro");
+      commands(lmp, {"run 2", "write_restart " + restart});
+    }
+    auto lmp = open_lammps();
+    commands(lmp, {"read_restart " + restart, "fix gas all sph/astro", "run 0"});
+    int dim;
+    const auto *lengths =
+        static_cast<double *>(lmp->force->pair->extract("pruned_list_lengths", dim));
+    ASSERT_NE(lengths, nullptr);
+    if (option == "prune no")
+      EXPECT_EQ(lengths[0], 0.0);
+    else
+      EXPECT_GT(lengths[0], 0.0);
   }
   std::remove(restart.c_str());
 }
@@ -315,7 +338,10 @@ TEST_F(BadOptionInput, KeywordValuesNameTheStyleTheValueAndTheChoices)
   expect_error("pair_style sph/astro pressure", "Illegal pair_style sph/astro pressure");
   expect_error("pair_style sph/astro symmetrize kernel",
                "unknown keyword 'symmetrize'; allowed: kernel, eos, viscosity, balsara, "
-               "reconstruct, conductivity, conduction, epsilon, density, symmetrise, pressure");
+               "reconstruct, conductivity, conduction, epsilon, density, symmetrise, pressure, "
+               "prune");
+  expect_error("pair_style sph/astro prune", "Illegal pair_style sph/astro prune");
+  expect_error("pair_style sph/astro prune maybe", "Expected boolean parameter instead of 'maybe'");
   expect_error("pair_style sph/astro reconstruct yes gate 100",
                "reconstruct gate 100 must be an integer in 0-64");
   expect_error("pair_style sph/astro reconstruct yes trigger -1",

@@ -26,10 +26,17 @@
 // particles search small stencils. When an h grows to within 1/1.1 of its collection's
 // cutoff the fix makes LAMMPS rebuild the lists at the next step (atoms change collection).
 //
+// Pruned lists (pair sph/astro prune yes, the default): when an h comes within 1/1.05 of the
+// largest h its pruned neighbour list serves (1.1 x its h at the list build), the fix makes
+// LAMMPS rebuild the lists at the next step, so the pruned lists are made anew before an h
+// outgrows them.
+//
 // Global vector: 1 mean Newton iterations per particle of the latest density pass,
 // 2 largest number of iterations, 3 particles that did not converge since the run began,
 // 4 particles held at the h cap in the latest pass, 5 runs ended for a list rebuild,
-// 6 list builds forced because an h outgrew its collection.
+// 6 list builds forced because an h outgrew its collection, 7 list builds forced because an
+// h came near the limit of its pruned list, 8 pair passes (summed over ranks) and 9 atoms'
+// h iterations that went past the pruned lists' limit and used LAMMPS' full lists instead.
 
 #include "fix_sph_astro_h.h"
 
@@ -58,7 +65,7 @@ using namespace FixConst;
 FixSPHAstroH::FixSPHAstroH(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
 {
   vector_flag = 1;
-  size_vector = 6;
+  size_vector = 9;
   global_freq = 1;
   extvector = 0;
 
@@ -117,14 +124,16 @@ FixSPHAstroH::FixSPHAstroH(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, a
                "fix sph/astro/h: rebuild = {} must exceed 1/margin = {} (a new run starts with h "
                "at 1/margin of the cap)",
                rebuild_, 1.0 / margin_);
-  if (collections_) force_reneighbor = 1;
+  // collections, and the pruned lists of pair sph/astro, ask for list builds
+  force_reneighbor = 1;
   next_reneighbor = -1;
 }
 
 int FixSPHAstroH::setmask()
 {
-  // fix sph/astro calls advance_h() in its drift; end_of_step checks h against the caps
-  return (rebuild_ > 0.0 || collections_) ? END_OF_STEP | POST_RUN : 0;
+  // fix sph/astro calls advance_h() in its drift; end_of_step checks h against the caps,
+  // the collections' cutoffs and the limits of the pruned lists
+  return END_OF_STEP | POST_RUN;
 }
 
 void FixSPHAstroH::init()
@@ -212,6 +221,11 @@ void FixSPHAstroH::setup_collections()
 void FixSPHAstroH::setup(int /*vflag*/)
 {
   if (collections_) next_reneighbor = update->ntimestep + 1;
+  // the setup's h iteration may take h near or past the pruned lists' limit
+  if (outgrown_lists() & 2) {
+    next_reneighbor = update->ntimestep + 1;
+    prune_rebuilds_++;
+  }
   if (rebuild_ <= 0.0 || mode_ != Mode::ITERATE) return;
   int capped;
   MPI_Allreduce(&capped_, &capped, 1, MPI_INT, MPI_SUM, world);
@@ -227,20 +241,33 @@ void FixSPHAstroH::setup(int /*vflag*/)
                    capped, update->ntimestep);
 }
 
+// bit 1: an h within 1/1.1 of its collection's cutoff; bit 2: an h within 1/PRUNE_REBUILD of
+// its pruned list's limit, where that limit is below the h cap (a limit held at the cap does
+// not grow with a new list); 0 when neither is in use (collective)
+int FixSPHAstroH::outgrown_lists() const
+{
+  if (!collections_ && !pair_->pruning()) return 0;
+  const double *h = atom->dvector[state_.h];
+  const double grow = PairSPHAstro::PRUNE_REBUILD;
+  int outgrown_local = 0, outgrown;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (collections_ && 1.1 * h[i] > pair_->h_limit(i)) outgrown_local |= 1;
+    const double limit = pair_->prune_limit(i);
+    if (grow * h[i] > limit && limit < pair_->h_cap(atom->type[i])) outgrown_local |= 2;
+  }
+  MPI_Allreduce(&outgrown_local, &outgrown, 1, MPI_INT, MPI_BOR, world);
+  return outgrown;
+}
+
 void FixSPHAstroH::end_of_step()
 {
-  if (collections_) {
-    // an h within 1/1.1 of its collection's cutoff: rebuild the lists at the next step
-    const double *h = atom->dvector[state_.h];
-    int outgrown_local = 0, outgrown;
-    for (int i = 0; i < atom->nlocal; i++)
-      if (1.1 * h[i] > pair_->h_limit(i)) outgrown_local = 1;
-    MPI_Allreduce(&outgrown_local, &outgrown, 1, MPI_INT, MPI_MAX, world);
-    if (outgrown) {
-      next_reneighbor = update->ntimestep + 1;
-      collection_rebuilds_++;
-    }
-  }
+  // rebuild the lists at the next step so that atoms change collection or get new pruned lists
+  const int outgrown = outgrown_lists();
+  if (outgrown) next_reneighbor = update->ntimestep + 1;
+  if (outgrown & 1)
+    collection_rebuilds_++;
+  else if (outgrown & 2)
+    prune_rebuilds_++;
   if (rebuild_ <= 0.0 || rebuild_requested_) return;
   const int ntypes = atom->ntypes;
   const double *h = atom->dvector[state_.h];
@@ -326,6 +353,12 @@ double FixSPHAstroH::compute_vector(int n)
   }
   if (n == 4) return static_cast<double>(rebuilds_);
   if (n == 5) return static_cast<double>(collection_rebuilds_);
+  if (n == 6) return static_cast<double>(prune_rebuilds_);
+  if (n == 7 || n == 8) {
+    bigint local = n == 7 ? pair_->prune_fallbacks() : pair_->prune_atom_fallbacks(), all = 0;
+    MPI_Allreduce(&local, &all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+    return static_cast<double>(all);
+  }
   if (n == 2) {
     bigint all = 0;
     MPI_Allreduce(&failures_local_, &all, 1, MPI_LMP_BIGINT, MPI_SUM, world);

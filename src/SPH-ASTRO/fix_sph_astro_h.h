@@ -60,6 +60,8 @@ class FixSPHAstroH : public Fix {
   // h collections for neighbor multi: 0 off, -1 auto (factor ~2 apart), else their number
   int collections_ = 0;
   bigint collection_rebuilds_ = 0;    // list builds forced because h outgrew its collection
+  bigint prune_rebuilds_ = 0;         // list builds forced because h neared its pruned list's limit
+  int outgrown_lists() const;
   void setup_collections();
 
   SPHAstro::StateIndex state_;

@@ -92,6 +92,7 @@ PairSPHAstro::~PairSPHAstro()
   memory->destroy(vgsum_);
   memory->destroy(vgrad_);
   memory->destroy(pgeo_);
+  memory->destroy(hprune_);
   memory->destroy(hcap_type_);
   memory->destroy(conduct_);
   if (allocated) {
@@ -115,9 +116,10 @@ void PairSPHAstro::grow_work_arrays()
 {
   // (re)allocate also when curl v or v_sig became needed after the arrays were made
   if (atom->nmax <= nmax_ && (!curl_on_ || curlv_) && (!signal_viscosity() || vsigmax_) &&
-      (!pressure_geometric_ || pgeo_) && (!reconstruction() || vgrad_))
+      (!pressure_geometric_ || pgeo_) && (!reconstruction() || vgrad_) && (!prune_on_ || hprune_))
     return;
   nmax_ = MAX(nmax_, atom->nmax);
+  if (prune_on_) memory->grow(hprune_, nmax_, "pair:sph/astro:hprune");    // kept until a build
   memory->destroy(pressure_);
   memory->destroy(soundspeed_);
   memory->destroy(vdotgradw_);
@@ -177,6 +179,7 @@ void PairSPHAstro::settings(int narg, char **arg)
   density_continuity_ = false;
   symmetrise_kernel_ = false;
   pressure_geometric_ = false;
+  prune_on_ = true;
   int iarg = 0;
   while (iarg < narg) {
     const std::string key = arg[iarg];
@@ -360,11 +363,15 @@ void PairSPHAstro::settings(int narg, char **arg)
                    "pair_style sph/astro: unknown pressure '{}'; allowed: standard, geometric",
                    value);
       iarg += 2;
+    } else if (key == "prune") {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_style sph/astro prune", error);
+      prune_on_ = utils::logical(FLERR, arg[iarg + 1], false, lmp) == 1;
+      iarg += 2;
     } else
       error->all(FLERR,
                  "pair_style sph/astro: unknown keyword '{}'; allowed: kernel, eos, viscosity, "
                  "balsara, reconstruct, conductivity, conduction, epsilon, density, symmetrise, "
-                 "pressure",
+                 "pressure, prune",
                  key);
   }
   // the integrated density and its prediction live in their own per-atom state; it is
@@ -624,10 +631,11 @@ template <class KERNEL, int DIM, bool KM> void PairSPHAstro::density_sum()
   const int newton_pair = force->newton_pair;
   const int nzero = newton_pair ? nall : nlocal;
 
-  const int inum = list->inum;
-  const int *ilist = list->ilist;
-  const int *numneigh = list->numneigh;
-  int **firstneigh = list->firstneigh;
+  const SPHAstro::NeighView nl = half_view();
+  const int inum = nl.inum;
+  const int *ilist = nl.ilist;
+  const int *numneigh = nl.numneigh;
+  int *const *firstneigh = nl.firstneigh;
 
   const double sigma = K::sigma();
   const double R2 = K::radius * K::radius;
@@ -707,11 +715,12 @@ void PairSPHAstro::count_neighbours()
   const double R2 = kernel_radius_ * kernel_radius_;
   const bool km = symmetrise_kernel_;
   for (int i = 0; i < (newton_pair ? nall : nlocal); i++) nneigh_[i] = 0.0;
-  for (int ii = 0; ii < list->inum; ii++) {
-    const int i = list->ilist[ii];
+  const SPHAstro::NeighView nl = half_view();
+  for (int ii = 0; ii < nl.inum; ii++) {
+    const int i = nl.ilist[ii];
     const double hi = h[i];
-    const int *jlist = list->firstneigh[i];
-    const int jnum = list->numneigh[i];
+    const int *jlist = nl.firstneigh[i];
+    const int jnum = nl.numneigh[i];
     double ni = 0.0;
     for (int jj = 0; jj < jnum; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
@@ -760,10 +769,14 @@ template <class KERNEL, int DIM, int VSUMS> void PairSPHAstro::density_gradh()
   const tagint *tag = atom->tag;
   double **vest = (CURL || GRADIENT) ? atom->darray[state_.vest] : nullptr;
 
-  const int inum = listfull_->inum;
-  const int *ilist = listfull_->ilist;
-  const int *numneigh = listfull_->numneigh;
-  int **firstneigh = listfull_->firstneigh;
+  // the pruned full list while h stays within its limit, else LAMMPS' list for that atom
+  const bool pruned = pruned_full_.built();
+  const SPHAstro::NeighView nl = pruned ? pruned_full_.view() : SPHAstro::view_of(listfull_);
+  const int inum = nl.inum;
+  const int *ilist = nl.ilist;
+  const int *numneigh = nl.numneigh;
+  int *const *firstneigh = nl.firstneigh;
+  bigint atom_fallbacks = 0;
 
   const double sigma = K::sigma();
   const double R2 = K::radius * K::radius;
@@ -781,7 +794,8 @@ template <class KERNEL, int DIM, int VSUMS> void PairSPHAstro::density_gradh()
     const double mi = rmass ? rmass[i] : mass[type[i]];
     const double cap = h_limit(i);
     const int *jlist = firstneigh[i];
-    const int jnum = numneigh[i];
+    int jnum = numneigh[i];
+    double hlist = pruned ? hprune_[i] : INFINITY;    // the largest h jlist serves
 
     double hi = MIN(h[i], cap);
     double hlo = 0.0, hhi = INFINITY;    // f(h) = rho(h) - rho_target(h) rises with h
@@ -794,6 +808,12 @@ template <class KERNEL, int DIM, int VSUMS> void PairSPHAstro::density_gradh()
     int it = 0;
     while (it < maxiter) {
       it++;
+      if (hi > hlist) {
+        jlist = listfull_->firstneigh[i];
+        jnum = listfull_->numneigh[i];
+        hlist = INFINITY;
+        atom_fallbacks++;
+      }
       // rho(h) and sum_j m_j dW/dh at the current h
       const double hinv = 1.0 / hi;
       const double norm = sigma * inv_h_pow_dim<DIM>(hinv);
@@ -877,6 +897,7 @@ template <class KERNEL, int DIM, int VSUMS> void PairSPHAstro::density_gradh()
     omega_[i] = at_cap ? 1.0 : 1.0 + hi / (DIM * rhoi) * dsum;
     if (!(omega_[i] > 0.0)) omega_[i] = 1.0;
   }
+  prune_atom_fallbacks_ += atom_fallbacks;
   hfix_->record(iter_sum, iter_max, inum, failures, capped);
 }
 
@@ -1013,17 +1034,17 @@ template <class KERNEL, int DIM, int KFORM, int VSUMS> void PairSPHAstro::veloci
 
   forward_predicted_velocities();
 
-  NeighList *nl = list;
+  const SPHAstro::NeighView nl = half_view();
   const int nzero = newton_pair ? nall : nlocal;
   for (int i = 0; i < nzero; i++)
     for (int k = 0; k < NS; k++) sums[i][k] = 0.0;
-  for (int ii = 0; ii < nl->inum; ii++) {
-    const int i = nl->ilist[ii];
+  for (int ii = 0; ii < nl.inum; ii++) {
+    const int i = nl.ilist[ii];
     const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
     const double hi = h[i];
     const double mi = rmass ? rmass[i] : mass[type[i]];
-    const int *jlist = nl->firstneigh[i];
-    const int jnum = nl->numneigh[i];
+    const int *jlist = nl.firstneigh[i];
+    const int jnum = nl.numneigh[i];
     double acc[NS];    // sum v.gradW, sum v x gradW; or the grad v sums M and G
     for (int k = 0; k < NS; k++) acc[k] = 0.0;
     for (int jj = 0; jj < jnum; jj++) {
@@ -1134,10 +1155,69 @@ template <class KERNEL> void PairSPHAstro::dispatch_dimension()
     dispatch_physics<KERNEL, 3>();
 }
 
+/* ----------------------------------------------------------------------
+   pruned lists (sph_astro_pruned_list.h), made when LAMMPS has just built its lists: the
+   atoms sit where the build saw them, so a pair that comes within a kernel support before the
+   next build is now closer than that support plus the skin. hprune_ = growth x h, at most
+   the type's cap (fixed h: growth 1, h does not change during a run).
+------------------------------------------------------------------------- */
+
+void PairSPHAstro::prune_lists()
+{
+  double **x = atom->x;
+  const int *type = atom->type;
+  const double *h = atom->dvector[state_.h];
+  const int nall = atom->nlocal + atom->nghost;
+  const double growth = hmode_ == HMode::FIXED ? 1.0 : PRUNE_GROWTH;
+  for (int i = 0; i < nall; i++) hprune_[i] = MIN(growth * h[i], hcap_type_[type[i]]);
+  const double skin = neighbor->skin;
+  const double R = kernel_radius_;
+  const double *hl = hprune_;
+  auto r2 = [x](int i, int j) {
+    const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
+    return dx * dx + dy * dy + dz * dz;
+  };
+  pruned_half_.build(list, atom->nmax, [&](int i, int j) {
+    const double reach = R * MAX(hl[i], hl[j]) + skin;
+    return r2(i, j) < reach * reach;
+  });
+  if (listfull_)
+    pruned_full_.build(listfull_, atom->nmax, [&](int i, int j) {
+      const double reach = R * hl[i] + skin;
+      return r2(i, j) < reach * reach;
+    });
+  const double inum = MAX(list->inum, 1);
+  prune_lengths_[0] = pruned_half_.entries() / inum;
+  prune_lengths_[1] = listfull_ ? pruned_full_.entries() / inum : 0.0;
+}
+
+SPHAstro::NeighView PairSPHAstro::half_view()
+{
+  if (!pruned_half_.built()) return SPHAstro::view_of(list);
+  const double *h = atom->dvector[state_.h];
+  const int nall = atom->nlocal + atom->nghost;
+  for (int i = 0; i < nall; i++)
+    if (h[i] > hprune_[i]) {
+      prune_fallbacks_++;
+      return SPHAstro::view_of(list);
+    }
+  return pruned_half_.view();
+}
+
+double PairSPHAstro::prune_limit(int i) const
+{
+  return pruned_half_.built() ? hprune_[i] : INFINITY;
+}
+
 void PairSPHAstro::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
   grow_work_arrays();
+  if (!prune_on_) {
+    pruned_half_.clear();
+    pruned_full_.clear();
+  } else if (neighbor->ago == 0)
+    prune_lists();    // LAMMPS has built its lists in this step (or this run's setup)
   alpha_atom_ = switch_ ? switch_->alpha() : nullptr;
   switch (kernel_) {
     case KernelType::CUBIC:
@@ -1360,8 +1440,9 @@ void PairSPHAstro::write_restart_settings(FILE *fp)
   fwrite(dval, sizeof(double), 7, fp);
   fwrite(&cond_kappa_, sizeof(double), 1, fp);    // physical heat conduction
   // the seeds' other choices: density continuity, symmetrise kernel, pressure geometric
-  const int options =
-      (density_continuity_ ? 1 : 0) + (symmetrise_kernel_ ? 2 : 0) + (pressure_geometric_ ? 4 : 0);
+  // 8: prune no (restart files from before the keyword read as prune yes)
+  const int options = (density_continuity_ ? 1 : 0) + (symmetrise_kernel_ ? 2 : 0) +
+      (pressure_geometric_ ? 4 : 0) + (prune_on_ ? 0 : 8);
   fwrite(&options, sizeof(int), 1, fp);
   fwrite(&recon_trigger_, sizeof(double), 1, fp);
   fwrite(&recon_gate_, sizeof(int), 1, fp);
@@ -1386,6 +1467,7 @@ void PairSPHAstro::read_restart_settings(FILE *fp)
   density_continuity_ = (options & 1) != 0;
   symmetrise_kernel_ = (options & 2) != 0;
   pressure_geometric_ = (options & 4) != 0;
+  prune_on_ = (options & 8) == 0;
   MPI_Bcast(ival, 3, MPI_INT, 0, world);
   MPI_Bcast(dval, 7, MPI_DOUBLE, 0, world);
   kernel_ = static_cast<KernelType>(ival[0]);
@@ -1445,6 +1527,11 @@ void *PairSPHAstro::extract(const char *name, int &dim)
   if (strcmp(name, "kernel_radius") == 0) return (void *) &kernel_radius_;
   if (strcmp(name, "alpha") == 0) return (void *) &visc_alpha_;
   if (strcmp(name, "beta") == 0) return (void *) &visc_beta_;
+  // entries per atom of this rank's latest pruned half and full lists (0: none)
+  if (strcmp(name, "pruned_list_lengths") == 0) {
+    dim = 1;
+    return (void *) prune_lengths_;
+  }
   return nullptr;
 }
 
@@ -1473,7 +1560,9 @@ void *PairSPHAstro::extract_peratom(const char *name, int &ncol)
 
 double PairSPHAstro::memory_usage()
 {
-  return (6.0 + (pgeo_ ? 1.0 : 0.0) + (vgrad_ ? VGRAD_SUMS + VGRAD_DATA : 0)) * nmax_ *
-      sizeof(double) +
-      conduct_nmax_ * sizeof(double) + Pair::memory_usage();
+  return (6.0 + (pgeo_ ? 1.0 : 0.0) + (hprune_ ? 1.0 : 0.0) +
+          (vgrad_ ? VGRAD_SUMS + VGRAD_DATA : 0)) *
+      nmax_ * sizeof(double) +
+      conduct_nmax_ * sizeof(double) + pruned_half_.memory_usage() + pruned_full_.memory_usage() +
+      Pair::memory_usage();
 }

@@ -14,6 +14,7 @@ PairStyle(sph/astro,PairSPHAstro);
 #include "pair.h"
 #include "sph_astro_eos.h"
 #include "sph_astro_kernel.h"
+#include "sph_astro_pruned_list.h"
 #include "sph_astro_state.h"
 
 namespace LAMMPS_NS {
@@ -72,6 +73,17 @@ class PairSPHAstro : public Pair {
   double h_limit(int i) const;
   // room an atom's collection leaves for its h to grow before lists are rebuilt
   static constexpr double COLLECTION_GROWTH = 1.2;
+  // pruned neighbour lists (keyword prune, sph_astro_pruned_list.h): the largest h local atom
+  // i may take before the passes fall back to LAMMPS' lists (infinite when not pruning); fix
+  // sph/astro/h has the lists rebuilt when an h comes within PRUNE_REBUILD of it
+  bool pruning() const { return prune_on_; }
+  double prune_limit(int i) const;
+  static constexpr double PRUNE_GROWTH = 1.1;      // room for h to grow, variable h
+  static constexpr double PRUNE_REBUILD = 1.05;    // rebuild when PRUNE_REBUILD h > limit
+  // force evaluations since the run began in which this rank's pruned half list did not
+  // cover every h, and atoms whose h iteration went past its limit (both use LAMMPS' lists)
+  bigint prune_fallbacks() const { return prune_fallbacks_; }
+  bigint prune_atom_fallbacks() const { return prune_atom_fallbacks_; }
   // physical heat conduction (pair_sph_astro_conduction.cpp): kappa = k / c_v, 0 when off
   double conduction_kappa() const { return cond_kappa_; }
   // density continuity: rho integrated by fix sph/astro (d_rho), the force evaluation uses
@@ -139,6 +151,16 @@ class PairSPHAstro : public Pair {
   HMode hmode_ = HMode::FIXED;
   class FixSPHAstroH *hfix_ = nullptr;
   class NeighList *listfull_ = nullptr;    // GRADH density iteration: full list
+
+  // pruned lists (keyword prune, default yes): LAMMPS' half and full lists cut down to the
+  // kernel supports at each list build, for h up to hprune_ (owned + ghost)
+  bool prune_on_ = true;
+  SPHAstro::PrunedList pruned_half_, pruned_full_;
+  double *hprune_ = nullptr;
+  bigint prune_fallbacks_ = 0, prune_atom_fallbacks_ = 0;
+  double prune_lengths_[2] = {0.0, 0.0};    // entries per atom, half and full list
+  void prune_lists();
+  SPHAstro::NeighView half_view();    // the pruned half list if it covers every h, else LAMMPS'
 
   // h cap of each atom type for this run: margin x its largest h at init. Cutoff of types
   // (i,j): kernel_radius (cap_i + cap_j)/2 with h_ij, kernel_radius max(cap_i, cap_j) with GRADH

@@ -54,14 +54,15 @@ template <class KERNEL, int DIM, bool GRADH> void PairSPHAstro::conduction_loop(
   const double kappa = cond_kappa_;    // constant conductivity: kappa_i = kappa_j
 
   for (int i = 0; i < nzero; i++) conduct_[i] = 0.0;
-  for (int ii = 0; ii < list->inum; ii++) {
-    const int i = list->ilist[ii];
+  const SPHAstro::NeighView nl = half_view();
+  for (int ii = 0; ii < nl.inum; ii++) {
+    const int i = nl.ilist[ii];
     const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
     const double hi = h[i];
     const double mi = rmass ? rmass[i] : mass[type[i]];
     const double rhoi = rho[i], ui = uest[i];
-    const int *jlist = list->firstneigh[i];
-    const int jnum = list->numneigh[i];
+    const int *jlist = nl.firstneigh[i];
+    const int jnum = nl.numneigh[i];
     double qi = 0.0;
     for (int jj = 0; jj < jnum; jj++) {
       const int j = jlist[jj] & NEIGHMASK;

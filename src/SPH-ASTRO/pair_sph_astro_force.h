@@ -61,10 +61,11 @@ void PairSPHAstro::force_pass()
   const int newton_pair = force->newton_pair;
   const int nzero = newton_pair ? nall : nlocal;
 
-  const int inum = list->inum;
-  const int *ilist = list->ilist;
-  const int *numneigh = list->numneigh;
-  int **firstneigh = list->firstneigh;
+  const SPHAstro::NeighView nl = half_view();
+  const int inum = nl.inum;
+  const int *ilist = nl.ilist;
+  const int *numneigh = nl.numneigh;
+  int *const *firstneigh = nl.firstneigh;
   const double sigma = K::sigma();
   const double R2 = K::radius * K::radius;
   const double alpha = visc_alpha_, beta = visc_beta_, eps = visc_eps_;
