@@ -330,7 +330,8 @@ TEST(PrunedLists, GiveTheRunOfLAMMPSListsBitForBit)
         EXPECT_EQ(fix->compute_vector(8), 0.0) << hfix;
       }
     }
-    printf("%s: LAMMPS half list %.1f per atom, pruned %.1f (full %.1f); without pruning %.1f\n",
+    // (iterate with prune yes: LAMMPS makes only the full list, which Pair::list then is)
+    printf("%s: LAMMPS list %.1f per atom, pruned half %.1f (full %.1f); without pruning %.1f\n",
            hfix.empty() ? "fixed h" : hfix.c_str(), lengths[1][0], lengths[1][1], lengths[1][2],
            lengths[0][1]);
     EXPECT_EQ(lengths[0][1], 0.0);    // prune no: no pruned list
@@ -382,26 +383,41 @@ TEST(PrunedLists, FollowGrowingSmoothingLengths)
   EXPECT_LT(worst, 1e-8);
 }
 
-// an h raised past the pruned limit between runs, with run pre no (no list build): the passes
-// use LAMMPS' lists for it, and the result is that of prune no bit for bit
+// an h past the pruned limit: raised between runs with run pre no (dhdt), or by a larger hfact
+// at a setup (iterate). The passes use LAMMPS' lists (grad-h: the full list for the h
+// iteration, the half list made from it by LAMMPS' rule as decided at the build), and the
+// result is that of prune no bit for bit
 TEST(PrunedLists, FallBackToLAMMPSListsForAnHBeyondTheLimit)
 {
-  std::map<int, double> rho[2];
-  double fallbacks[2] = {0.0, 0.0};
   const double h_raised = 1.6 * 1.2 * std::cbrt(0.25);
-  for (int prune : {0, 1}) {
-    auto lmp = open_lammps();
-    gas(lmp, "box", 4, std::string(PAIR) + (prune ? " prune yes" : " prune no"),
-        "sph/astro courant 0.3", 1.0, 0.04);
-    commands(lmp,
-             {"fix hvar all sph/astro/h dhdt margin 3.0", "run 5",
-              "set atom 1*40 d_h " + num(h_raised), "run 1 pre no"});
-    rho[prune] = per_atom(lmp, "rho", 0);
-    fallbacks[prune] = lmp->modify->get_fix_by_id("hvar")->compute_vector(7);
+  for (const std::string mode : {"dhdt", "iterate"}) {
+    std::map<std::string, std::map<int, double>> result[2];
+    double fallbacks[2][2] = {};
+    for (int prune : {0, 1}) {
+      auto lmp = open_lammps();
+      gas(lmp, "box", 4, std::string(PAIR) + (prune ? " prune yes" : " prune no"),
+          "sph/astro courant 0.3", 1.0, 0.04);
+      commands(lmp, {"fix hvar all sph/astro/h " + mode + " margin 3.0", "run 5"});
+      if (mode == "dhdt")    // with run pre no, h is raised after the lists were pruned
+        commands(lmp, {"set atom 1*40 d_h " + num(h_raised), "run 1 pre no"});
+      else    // the setup prunes for the old h, then iterates h to 1.5 (m/rho)^(1/3), not 1.2
+        commands(lmp,
+                 {"unfix hvar", "fix hvar all sph/astro/h iterate hfact 1.5 margin 3.0", "run 0"});
+      for (const char *field : {"rho", "h", "u"}) result[prune][field] = per_atom(lmp, field, 0);
+      result[prune]["fx"] = per_atom(lmp, "f", 0);
+      auto *fix = lmp->modify->get_fix_by_id("hvar");
+      fallbacks[prune][0] = fix->compute_vector(7);
+      fallbacks[prune][1] = fix->compute_vector(8);
+    }
+    printf("%s: %.0f passes and %.0f atoms' h iterations fell back to LAMMPS' lists\n",
+           mode.c_str(), fallbacks[1][0], fallbacks[1][1]);
+    EXPECT_EQ(fallbacks[0][0] + fallbacks[0][1], 0.0);
+    EXPECT_GE(fallbacks[1][0], 1.0) << mode;
+    if (mode == "iterate") EXPECT_GE(fallbacks[1][1], 1.0);
+    for (const auto &[field, values] : result[0])
+      for (const auto &[id, value] : values)
+        ASSERT_EQ(value, result[1][field].at(id)) << mode << " " << field << " atom " << id;
   }
-  EXPECT_EQ(fallbacks[0], 0.0);
-  EXPECT_GE(fallbacks[1], 1.0);
-  for (const auto &[id, value] : rho[0]) ASSERT_EQ(value, rho[1].at(id)) << "atom " << id;
 }
 
 TEST(FixSPHAstroH, DhdtFollowsTheDivergence)

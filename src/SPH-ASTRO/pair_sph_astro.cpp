@@ -510,20 +510,29 @@ void PairSPHAstro::init_style()
                    "usual",
                    neighbor->skin, support);
 
+  // (LAMMPS calls init_list() only for lists it makes anew: pointers to lists requested again
+  // stay valid, those not requested are dropped here)
   if (hmode_ == HMode::GRADH) {
-    // full list for the per-particle h iteration, half list for the pair forces
+    // full list for the per-particle h iteration, half list for the pair forces (with prune
+    // yes this style makes the half list itself, in the scan that prunes the full one)
     neighbor->add_request(this, NeighConst::REQ_FULL)->set_id(1);
-    neighbor->add_request(this)->set_id(2);
-  } else
+    if (!prune_on_)
+      neighbor->add_request(this)->set_id(2);
+    else
+      lammps_half_ = nullptr;
+  } else {
     neighbor->add_request(this);
+    listfull_ = nullptr;
+  }
 }
 
 void PairSPHAstro::init_list(int id, NeighList *ptr)
 {
-  if (hmode_ == HMode::GRADH && id == 1)
+  if (hmode_ == HMode::GRADH && id == 1) {
     listfull_ = ptr;
-  else
-    list = ptr;
+    if (prune_on_) list = ptr;    // Pair::list: the one LAMMPS list there is
+  } else
+    list = lammps_half_ = ptr;
 }
 
 double PairSPHAstro::init_one(int i, int j)
@@ -1173,33 +1182,91 @@ void PairSPHAstro::prune_lists()
   const double skin = neighbor->skin;
   const double R = kernel_radius_;
   const double *hl = hprune_;
-  auto r2 = [x](int i, int j) {
-    const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
-    return dx * dx + dy * dy + dz * dz;
-  };
-  pruned_half_.build(list, atom->nmax, [&](int i, int j) {
-    const double reach = R * MAX(hl[i], hl[j]) + skin;
-    return r2(i, j) < reach * reach;
-  });
-  if (listfull_)
-    pruned_full_.build(listfull_, atom->nmax, [&](int i, int j) {
-      const double reach = R * hl[i] + skin;
-      return r2(i, j) < reach * reach;
-    });
-  const double inum = MAX(list->inum, 1);
+  const SPHAstro::HalfFromFull half_rule = half_from_full();
+  fallback_half_.clear();
+
+  // one scan of LAMMPS' full list (grad-h) or half list: r_ij < R max(hl_i, hl_j) + skin for
+  // the half list, r_ij < R hl_i + skin for the full list of the h iteration
+  NeighList *src = listfull_ ? listfull_ : lammps_half_;
+  const std::size_t capacity = SPHAstro::list_entries(src);
+  pruned_half_.begin(src->inum, src->ilist, atom->nmax, capacity);
+  if (listfull_) {
+    pruned_full_.begin(src->inum, src->ilist, atom->nmax, capacity);
+    // LAMMPS' half-from-full rule compares positions: taken now, at the build, for every entry
+    if (half_keep_.size() < capacity) half_keep_.resize(capacity + capacity / 4);
+  }
+  std::size_t offset = 0;
+  for (int ii = 0; ii < src->inum; ii++) {
+    const int i = src->ilist[ii];
+    const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
+    const double hli = hl[i];
+    const double reach_full = R * hli + skin;
+    const double reach_full2 = reach_full * reach_full;
+    const int *jlist = src->firstneigh[i];
+    const int jnum = src->numneigh[i];
+    int *half = pruned_half_.row(i);
+    int *full = listfull_ ? pruned_full_.row(i) : nullptr;
+    int nhalf = 0, nfull = 0;
+    for (int jj = 0; jj < jnum; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const bool in_half = !listfull_ || half_rule.keeps(x, i, j);
+      if (listfull_) half_keep_[offset + jj] = in_half;
+      const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      const double reach = R * MAX(hli, hl[j]) + skin;
+      if (r2 >= reach * reach) continue;    // reach >= reach_full
+      if (in_half) half[nhalf++] = jlist[jj];
+      if (listfull_ && r2 < reach_full2) full[nfull++] = jlist[jj];
+    }
+    offset += jnum;
+    pruned_half_.close(i, nhalf);
+    if (listfull_) pruned_full_.close(i, nfull);
+  }
+  const double inum = MAX(src->inum, 1);
   prune_lengths_[0] = pruned_half_.entries() / inum;
   prune_lengths_[1] = listfull_ ? pruned_full_.entries() / inum : 0.0;
 }
 
+SPHAstro::HalfFromFull PairSPHAstro::half_from_full() const
+{
+  return {atom->nlocal, force->newton_pair != 0, domain->triclinic != 0, 0.01 * force->angstrom};
+}
+
+// LAMMPS' half list, or with prune yes in grad-h mode (no LAMMPS half list) the half list made
+// from LAMMPS' full list by LAMMPS' own rule (decided at the build), when a pass first needs it
+// after a build
+SPHAstro::NeighView PairSPHAstro::unpruned_half_view()
+{
+  if (lammps_half_) return SPHAstro::view_of(lammps_half_);
+  if (!fallback_half_.built()) {
+    // the entries LAMMPS' rule kept at the build (half_keep_, set by prune_lists)
+    fallback_half_.begin(listfull_->inum, listfull_->ilist, atom->nmax,
+                         SPHAstro::list_entries(listfull_));
+    std::size_t offset = 0;
+    for (int ii = 0; ii < listfull_->inum; ii++) {
+      const int i = listfull_->ilist[ii];
+      const int *jlist = listfull_->firstneigh[i];
+      const int jnum = listfull_->numneigh[i];
+      int *half = fallback_half_.row(i);
+      int n = 0;
+      for (int jj = 0; jj < jnum; jj++)
+        if (half_keep_[offset + jj]) half[n++] = jlist[jj];
+      fallback_half_.close(i, n);
+      offset += jnum;
+    }
+  }
+  return fallback_half_.view();
+}
+
 SPHAstro::NeighView PairSPHAstro::half_view()
 {
-  if (!pruned_half_.built()) return SPHAstro::view_of(list);
+  if (!pruned_half_.built()) return unpruned_half_view();
   const double *h = atom->dvector[state_.h];
   const int nall = atom->nlocal + atom->nghost;
   for (int i = 0; i < nall; i++)
     if (h[i] > hprune_[i]) {
       prune_fallbacks_++;
-      return SPHAstro::view_of(list);
+      return unpruned_half_view();
     }
   return pruned_half_.view();
 }
@@ -1564,5 +1631,5 @@ double PairSPHAstro::memory_usage()
           (vgrad_ ? VGRAD_SUMS + VGRAD_DATA : 0)) *
       nmax_ * sizeof(double) +
       conduct_nmax_ * sizeof(double) + pruned_half_.memory_usage() + pruned_full_.memory_usage() +
-      Pair::memory_usage();
+      fallback_half_.memory_usage() + half_keep_.capacity() + Pair::memory_usage();
 }

@@ -12,10 +12,12 @@ PairStyle(sph/astro,PairSPHAstro);
 #define LMP_PAIR_SPH_ASTRO_H
 
 #include "pair.h"
+
 #include "sph_astro_eos.h"
 #include "sph_astro_kernel.h"
 #include "sph_astro_pruned_list.h"
 #include "sph_astro_state.h"
+#include <vector>
 
 namespace LAMMPS_NS {
 
@@ -150,17 +152,22 @@ class PairSPHAstro : public Pair {
   enum class HMode { FIXED, DHDT, GRADH };
   HMode hmode_ = HMode::FIXED;
   class FixSPHAstroH *hfix_ = nullptr;
-  class NeighList *listfull_ = nullptr;    // GRADH density iteration: full list
+  class NeighList *listfull_ = nullptr;       // GRADH density iteration: full list
+  class NeighList *lammps_half_ = nullptr;    // LAMMPS' half list (none: GRADH with prune)
 
   // pruned lists (keyword prune, default yes): LAMMPS' half and full lists cut down to the
   // kernel supports at each list build, for h up to hprune_ (owned + ghost)
   bool prune_on_ = true;
   SPHAstro::PrunedList pruned_half_, pruned_full_;
+  SPHAstro::PrunedList fallback_half_;      // GRADH with prune: unpruned half list, on demand
+  std::vector<unsigned char> half_keep_;    // per full-list entry: in LAMMPS' half list
   double *hprune_ = nullptr;
   bigint prune_fallbacks_ = 0, prune_atom_fallbacks_ = 0;
   double prune_lengths_[2] = {0.0, 0.0};    // entries per atom, half and full list
   void prune_lists();
   SPHAstro::NeighView half_view();    // the pruned half list if it covers every h, else LAMMPS'
+  SPHAstro::NeighView unpruned_half_view();
+  SPHAstro::HalfFromFull half_from_full() const;
 
   // h cap of each atom type for this run: margin x its largest h at init. Cutoff of types
   // (i,j): kernel_radius (cap_i + cap_j)/2 with h_ij, kernel_radius max(cap_i, cap_j) with GRADH

@@ -22,6 +22,7 @@
 #include "lmptype.h"
 #include "neigh_list.h"
 
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -40,56 +41,88 @@ inline NeighView view_of(const LAMMPS_NS::NeighList *list)
   return {list->inum, list->ilist, list->numneigh, list->firstneigh};
 }
 
+// the rule by which LAMMPS derives a half list from a full one (npair_halffull.cpp), so that
+// a half list made here from LAMMPS' full list holds LAMMPS' half list's pairs in its order:
+// newton off: j > i; newton on: owned pairs once (i < j), a ghost j only if it lies "above"
+// atom i (z, then y, then x; with a 0.01 Angstrom tolerance for triclinic boxes)
+struct HalfFromFull {
+  int nlocal;
+  bool newton, triclinic;
+  double delta;    // 0.01 x force->angstrom
+  bool keeps(double **x, int i, int j) const
+  {
+    if (!newton) return j > i;
+    if (j < nlocal) return i < j;
+    const double *xi = x[i], *xj = x[j];
+    if (triclinic) {
+      if (std::fabs(xj[2] - xi[2]) > delta) return xj[2] >= xi[2];
+      if (std::fabs(xj[1] - xi[1]) > delta) return xj[1] >= xi[1];
+      return xj[0] >= xi[0];
+    }
+    if (xj[2] < xi[2]) return false;
+    if (xj[2] == xi[2]) {
+      if (xj[1] < xi[1]) return false;
+      if (xj[1] == xi[1] && xj[0] < xi[0]) return false;
+    }
+    return true;
+  }
+};
+
 class PrunedList {
  public:
-  // keep(i, j): whether entry j (special bits masked off) of atom i stays; entries keep
-  // their special bits and their order
-  template <class Keep> void build(const LAMMPS_NS::NeighList *src, int nmax, Keep keep)
+  // start a list for the atoms ilist[0..inum) of at most capacity entries (nmax: atom arrays)
+  void begin(int inum, const int *ilist, int nmax, std::size_t capacity)
   {
     if (static_cast<int>(numneigh_.size()) < nmax) {
       numneigh_.resize(nmax);
-      offset_.resize(nmax);
       firstneigh_.resize(nmax);
     }
-    inum_ = src->inum;
-    ilist_ = src->ilist;
-    entries_.clear();
-    for (int ii = 0; ii < inum_; ii++) {
-      const int i = ilist_[ii];
-      const int *jlist = src->firstneigh[i];
-      const int jnum = src->numneigh[i];
-      offset_[i] = entries_.size();
-      for (int jj = 0; jj < jnum; jj++)
-        if (keep(i, jlist[jj] & NEIGHMASK)) entries_.push_back(jlist[jj]);
-      numneigh_[i] = static_cast<int>(entries_.size() - offset_[i]);
-    }
-    for (int ii = 0; ii < inum_; ii++) {
-      const int i = ilist_[ii];
-      firstneigh_[i] = entries_.data() + offset_[i];
-    }
+    if (entries_.size() < capacity) entries_.resize(capacity + capacity / 4);
+    inum_ = inum;
+    ilist_ = ilist;
+    used_ = 0;
     built_ = true;
+  }
+  // the next row, for atom i: write its entries at row(i), then close it with its count
+  int *row(int i)
+  {
+    firstneigh_[i] = entries_.data() + used_;
+    return firstneigh_[i];
+  }
+  void close(int i, int n)
+  {
+    numneigh_[i] = n;
+    used_ += n;
   }
 
   bool built() const { return built_; }
   void clear() { built_ = false; }
   NeighView view() const { return {inum_, ilist_, numneigh_.data(), firstneigh_.data()}; }
-  std::size_t entries() const { return entries_.size(); }
+  std::size_t entries() const { return used_; }
   double memory_usage() const
   {
-    return static_cast<double>(
-        entries_.capacity() * sizeof(int) + numneigh_.capacity() * sizeof(int) +
-        offset_.capacity() * sizeof(std::size_t) + firstneigh_.capacity() * sizeof(int *));
+    return static_cast<double>(entries_.capacity() * sizeof(int) +
+                               numneigh_.capacity() * sizeof(int) +
+                               firstneigh_.capacity() * sizeof(int *));
   }
 
  private:
   bool built_ = false;
   int inum_ = 0;
   const int *ilist_ = nullptr;
+  std::size_t used_ = 0;
   std::vector<int> entries_;
   std::vector<int> numneigh_;
-  std::vector<std::size_t> offset_;
   std::vector<int *> firstneigh_;
 };
+
+// the entries of a LAMMPS list, summed over its atoms
+inline std::size_t list_entries(const LAMMPS_NS::NeighList *list)
+{
+  std::size_t n = 0;
+  for (int ii = 0; ii < list->inum; ii++) n += list->numneigh[list->ilist[ii]];
+  return n;
+}
 
 }    // namespace SPHAstro
 
