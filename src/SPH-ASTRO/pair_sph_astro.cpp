@@ -1238,6 +1238,10 @@ SPHAstro::HalfFromFull PairSPHAstro::half_from_full() const
 SPHAstro::NeighView PairSPHAstro::unpruned_half_view()
 {
   if (lammps_half_) return SPHAstro::view_of(lammps_half_);
+  if (!pruned_half_.built())    // (a run's setup builds the lists, and they are pruned there)
+    error->all(FLERR,
+               "pair_style sph/astro prune yes: no neighbour list was built in this run's setup; "
+               "run with pre yes after changing the pair style");
   if (!fallback_half_.built()) {
     // the entries LAMMPS' rule kept at the build (half_keep_, set by prune_lists)
     fallback_half_.begin(listfull_->inum, listfull_->ilist, atom->nmax,
