@@ -295,6 +295,15 @@ TEST(FixSPHAstroH, ListsFollowGrowingSmoothingLengths)
   }
 }
 
+// a gas of the given shape with pair sph/astro prune yes (prune = 1) or prune no
+static std::unique_ptr<LAMMPS> gas_pruned(int prune, const std::string &shape, int n,
+                                          const std::string &fix)
+{
+  auto lmp = open_lammps();
+  gas(lmp, shape, n, std::string(PAIR) + (prune ? " prune yes" : " prune no"), fix, 1.0, 0.04);
+  return lmp;
+}
+
 // pruned lists (pair sph/astro prune, sph_astro_pruned_list.h): the same sums in the same order
 // as over LAMMPS' lists, so the same run bit for bit while the pruning adds no list build. A
 // periodic box of gas with 20 % pressure differences: h changes little; with fix sph/astro/h
@@ -306,9 +315,7 @@ TEST(PrunedLists, GiveTheRunOfLAMMPSListsBitForBit)
     std::map<std::string, std::map<int, double>> result[2];
     double lengths[2][3] = {};
     for (int prune : {0, 1}) {
-      auto lmp = open_lammps();
-      gas(lmp, "box", 4, std::string(PAIR) + (prune ? " prune yes" : " prune no"),
-          "sph/astro courant 0.3", 1.0, 0.04);
+      auto lmp = gas_pruned(prune, "box", 4, "sph/astro courant 0.3");
       if (!hfix.empty()) commands(lmp, {hfix});
       commands(lmp, {"run 60"});
       for (const char *field : {"u", "h", "rho"}) result[prune][field] = per_atom(lmp, field, 0);
@@ -356,9 +363,7 @@ TEST(PrunedLists, FollowGrowingSmoothingLengths)
   std::map<int, double> x[2];
   double at_setup[2][2] = {}, after[2][3] = {}, natoms = 0.0;
   for (int prune : {0, 1}) {
-    auto lmp = open_lammps();
-    gas(lmp, "ball", 6, std::string(PAIR) + (prune ? " prune yes" : " prune no"),
-        "sph/astro dt fixed", 1.0, 0.04);
+    auto lmp = gas_pruned(prune, "ball", 6, "sph/astro dt fixed");
     commands(lmp,
              {"fix hvar all sph/astro/h iterate margin 4.0 tol 1e-10", "neighbor 0.1 bin",
               "neigh_modify every 1 delay 0 check yes one 10000", "timestep 0.004", "run 0"});
@@ -377,7 +382,8 @@ TEST(PrunedLists, FollowGrowingSmoothingLengths)
   EXPECT_EQ(after[0][0] + after[0][1] + after[0][2], 0.0);    // prune no: nothing to count
   EXPECT_GE(after[1][0], 1.0);
   EXPECT_EQ(after[1][1], at_setup[1][0]);
-  EXPECT_LT(after[1][2] - at_setup[1][1], 0.01 * 150 * natoms);
+  // measured 238 of 150 x 459 atom-iterations (0.35 %)
+  EXPECT_LT(after[1][2] - at_setup[1][1], 0.005 * 150 * natoms);
   double worst = 0.0;
   for (const auto &[id, value] : x[0]) worst = std::max(worst, std::fabs(x[1].at(id) - value));
   EXPECT_LT(worst, 1e-8);
@@ -394,9 +400,7 @@ TEST(PrunedLists, FallBackToLAMMPSListsForAnHBeyondTheLimit)
     std::map<std::string, std::map<int, double>> result[2];
     double fallbacks[2][2] = {};
     for (int prune : {0, 1}) {
-      auto lmp = open_lammps();
-      gas(lmp, "box", 4, std::string(PAIR) + (prune ? " prune yes" : " prune no"),
-          "sph/astro courant 0.3", 1.0, 0.04);
+      auto lmp = gas_pruned(prune, "box", 4, "sph/astro courant 0.3");
       commands(lmp, {"fix hvar all sph/astro/h " + mode + " margin 3.0", "run 5"});
       if (mode == "dhdt")    // with run pre no, h is raised after the lists were pruned
         commands(lmp, {"set atom 1*40 d_h " + num(h_raised), "run 1 pre no"});
