@@ -9,6 +9,7 @@
 #include "force.h"
 #include "neigh_list.h"
 #include "pair.h"
+#include "sph_astro_pruned_list.h"
 
 #include <cmath>
 #include <cstdio>
@@ -302,6 +303,40 @@ static std::unique_ptr<LAMMPS> gas_pruned(int prune, const std::string &shape, i
   auto lmp = open_lammps();
   gas(lmp, shape, n, std::string(PAIR) + (prune ? " prune yes" : " prune no"), fix, 1.0, 0.04);
   return lmp;
+}
+
+// the prune scan's branch-free form of LAMMPS' half-from-full rule decides every pair as the
+// rule does: owned and ghost atoms, newton on and off, coordinates on a coarse grid so that
+// equal z, equal z and y, and equal z, y and x all occur
+TEST(PrunedLists, BranchFreeHalfRuleIsLAMMPSRule)
+{
+  const int nlocal = 40, nall = 160;
+  std::vector<double> coords(3 * nall);
+  std::vector<double *> x(nall);
+  unsigned state = 12345u;
+  for (int k = 0; k < nall; k++) {
+    for (int d = 0; d < 3; d++) {
+      state = state * 1103515245u + 12345u;
+      coords[3 * k + d] = 0.5 * static_cast<double>((state >> 16) % 3);
+    }
+    x[k] = &coords[3 * k];
+  }
+  int kept = 0, decided = 0;
+  for (bool newton : {false, true}) {
+    const SPHAstro::HalfFromFull rule{nlocal, newton, false, 0.01};
+    for (int i = 0; i < nlocal; i++)
+      for (int j = 0; j < nall; j++) {
+        if (j == i) continue;
+        const bool reference = rule.keeps(x.data(), i, j);
+        ASSERT_EQ(rule.keeps_branchless(x.data(), i, j), reference)
+            << "newton " << newton << ", i " << i << ", j " << j;
+        kept += reference;
+        decided++;
+      }
+  }
+  // both answers occur (the grid of 27 points holds many ties)
+  EXPECT_GT(kept, decided / 4);
+  EXPECT_LT(kept, 3 * decided / 4);
 }
 
 // pruned lists (pair sph/astro prune, sph_astro_pruned_list.h): the same sums in the same order

@@ -1207,16 +1207,32 @@ void PairSPHAstro::prune_lists()
     int *half = pruned_half_.row(i);
     int *full = listfull_ ? pruned_full_.row(i) : nullptr;
     int nhalf = 0, nfull = 0;
-    for (int jj = 0; jj < jnum; jj++) {
-      const int j = jlist[jj] & NEIGHMASK;
-      const bool in_half = !listfull_ || half_rule.keeps(x, i, j);
-      if (listfull_) half_keep_[offset + jj] = in_half;
-      const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
-      const double r2 = dx * dx + dy * dy + dz * dz;
-      const double reach = R * MAX(hli, hl[j]) + skin;
-      if (r2 >= reach * reach) continue;    // reach >= reach_full
-      if (in_half) half[nhalf++] = jlist[jj];
-      if (listfull_ && r2 < reach_full2) full[nfull++] = jlist[jj];
+    // branch-free compaction: every entry is written at the next free place of its row and
+    // kept by advancing the count (a row holds at most jnum entries, so the place exists)
+    if (listfull_) {
+      unsigned char *keep = half_keep_.data() + offset;
+      for (int jj = 0; jj < jnum; jj++) {
+        const int j = jlist[jj] & NEIGHMASK;
+        const bool in_half = half_rule.keeps_branchless(x, i, j);
+        keep[jj] = in_half;
+        const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
+        const double r2 = dx * dx + dy * dy + dz * dz;
+        const double reach = R * MAX(hli, hl[j]) + skin;
+        const bool within = r2 < reach * reach;    // reach >= reach_full
+        half[nhalf] = jlist[jj];
+        nhalf += in_half & within;
+        full[nfull] = jlist[jj];
+        nfull += within & (r2 < reach_full2);
+      }
+    } else {
+      for (int jj = 0; jj < jnum; jj++) {
+        const int j = jlist[jj] & NEIGHMASK;
+        const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
+        const double r2 = dx * dx + dy * dy + dz * dz;
+        const double reach = R * MAX(hli, hl[j]) + skin;
+        half[nhalf] = jlist[jj];
+        nhalf += r2 < reach * reach;
+      }
     }
     offset += jnum;
     pruned_half_.close(i, nhalf);

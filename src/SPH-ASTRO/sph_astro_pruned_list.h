@@ -66,6 +66,22 @@ struct HalfFromFull {
     }
     return true;
   }
+  // the same decision without data-dependent branches (the prune scan's hot loop): bitwise
+  // operations on the comparisons instead of keeps()'s early returns, which follow
+  // npair_halffull.cpp line by line
+  bool keeps_branchless(double **x, int i, int j) const
+  {
+    if (!newton) return j > i;
+    if (triclinic) return keeps(x, i, j);
+    const bool owned = j < nlocal;
+    return (owned & (i < j)) | (!owned & above(x[i], x[j]));
+  }
+  // not below: z, then y, then x (npair_halffull.cpp, newton on, orthogonal box)
+  static bool above(const double *xi, const double *xj)
+  {
+    return (xj[2] > xi[2]) |
+        ((xj[2] == xi[2]) & ((xj[1] > xi[1]) | ((xj[1] == xi[1]) & (xj[0] >= xi[0]))));
+  }
 };
 
 class PrunedList {
