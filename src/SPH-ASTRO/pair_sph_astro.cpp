@@ -1188,12 +1188,12 @@ void PairSPHAstro::prune_lists()
   // one scan of LAMMPS' full list (grad-h) or half list: r_ij < R max(hl_i, hl_j) + skin for
   // the half list, r_ij < R hl_i + skin for the full list of the h iteration
   NeighList *src = listfull_ ? listfull_ : lammps_half_;
-  const std::size_t capacity = SPHAstro::list_entries(src);
-  pruned_half_.begin(src->inum, src->ilist, atom->nmax, capacity);
+  begin_pruned(pruned_half_, src);
   if (listfull_) {
-    pruned_full_.begin(src->inum, src->ilist, atom->nmax, capacity);
+    begin_pruned(pruned_full_, src);
     // LAMMPS' half-from-full rule compares positions: taken now, at the build, for every entry
-    if (half_keep_.size() < capacity) half_keep_.resize(capacity + capacity / 4);
+    const std::size_t entries = SPHAstro::list_entries(src);
+    if (half_keep_.size() < entries) half_keep_.resize(entries + entries / 4);
   }
   std::size_t offset = 0;
   for (int ii = 0; ii < src->inum; ii++) {
@@ -1204,11 +1204,11 @@ void PairSPHAstro::prune_lists()
     const double reach_full2 = reach_full * reach_full;
     const int *jlist = src->firstneigh[i];
     const int jnum = src->numneigh[i];
-    int *half = pruned_half_.row(i);
-    int *full = listfull_ ? pruned_full_.row(i) : nullptr;
+    int *half = pruned_row(pruned_half_, i);
+    int *full = listfull_ ? pruned_row(pruned_full_, i) : nullptr;
     int nhalf = 0, nfull = 0;
     // branch-free compaction: every entry is written at the next free place of its row and
-    // kept by advancing the count (a row holds at most jnum entries, so the place exists)
+    // kept by advancing the count (a row has room for neigh_modify one >= jnum entries)
     if (listfull_) {
       unsigned char *keep = half_keep_.data() + offset;
       for (int jj = 0; jj < jnum; jj++) {
@@ -1243,6 +1243,27 @@ void PairSPHAstro::prune_lists()
   prune_lengths_[1] = listfull_ ? pruned_full_.entries() / inum : 0.0;
 }
 
+// a list made from the LAMMPS list src: rows of at most neigh_modify one entries, in LAMMPS'
+// page size
+void PairSPHAstro::begin_pruned(SPHAstro::PrunedList &list, const NeighList *src)
+{
+  if (!list.begin(src->inum, src->ilist, atom->nmax, neighbor->oneatom, neighbor->pgsize))
+    error->one(FLERR,
+               "pair_style sph/astro prune: cannot set up list pages (neigh_modify one {}, page "
+               "{})",
+               neighbor->oneatom, neighbor->pgsize);
+}
+
+int *PairSPHAstro::pruned_row(SPHAstro::PrunedList &list, int i)
+{
+  int *row = list.row(i);
+  if (!row)
+    error->one(FLERR,
+               "pair_style sph/astro prune: out of memory for the pruned neighbour lists; use "
+               "prune no");
+  return row;
+}
+
 SPHAstro::HalfFromFull PairSPHAstro::half_from_full() const
 {
   return {atom->nlocal, force->newton_pair != 0, domain->triclinic != 0, 0.01 * force->angstrom};
@@ -1260,14 +1281,13 @@ SPHAstro::NeighView PairSPHAstro::unpruned_half_view()
                "run with pre yes after changing the pair style");
   if (!fallback_half_.built()) {
     // the entries LAMMPS' rule kept at the build (half_keep_, set by prune_lists)
-    fallback_half_.begin(listfull_->inum, listfull_->ilist, atom->nmax,
-                         SPHAstro::list_entries(listfull_));
+    begin_pruned(fallback_half_, listfull_);
     std::size_t offset = 0;
     for (int ii = 0; ii < listfull_->inum; ii++) {
       const int i = listfull_->ilist[ii];
       const int *jlist = listfull_->firstneigh[i];
       const int jnum = listfull_->numneigh[i];
-      int *half = fallback_half_.row(i);
+      int *half = pruned_row(fallback_half_, i);
       int n = 0;
       for (int jj = 0; jj < jnum; jj++)
         if (half_keep_[offset + jj]) half[n++] = jlist[jj];

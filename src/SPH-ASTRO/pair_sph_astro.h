@@ -168,6 +168,8 @@ class PairSPHAstro : public Pair {
   SPHAstro::NeighView half_view();    // the pruned half list if it covers every h, else LAMMPS'
   SPHAstro::NeighView unpruned_half_view();
   SPHAstro::HalfFromFull half_from_full() const;
+  void begin_pruned(SPHAstro::PrunedList &list, const class NeighList *src);
+  int *pruned_row(SPHAstro::PrunedList &list, int i);
 
   // h cap of each atom type for this run: margin x its largest h at init. Cutoff of types
   // (i,j): kernel_radius (cap_i + cap_j)/2 with h_ij, kernel_radius max(cap_i, cap_j) with GRADH

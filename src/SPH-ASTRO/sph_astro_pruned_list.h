@@ -20,6 +20,7 @@
 #define LMP_SPH_ASTRO_PRUNED_LIST_H
 
 #include "lmptype.h"
+#include "my_page.h"
 #include "neigh_list.h"
 
 #include <cmath>
@@ -84,50 +85,60 @@ struct HalfFromFull {
   }
 };
 
+// rows in LAMMPS' page allocator (my_page.h), as LAMMPS' own lists: memory grows with the
+// entries kept, and a row never moves once written
 class PrunedList {
  public:
-  // start a list for the atoms ilist[0..inum) of at most capacity entries (nmax: atom arrays)
-  void begin(int inum, const int *ilist, int nmax, std::size_t capacity)
+  // start a list for the atoms ilist[0..inum) (nmax: atom arrays) whose rows hold at most
+  // maxrow entries (LAMMPS' neigh_modify one), in pages of pagesize entries (page); false if
+  // the pages cannot be set up
+  bool begin(int inum, const int *ilist, int nmax, int maxrow, int pagesize)
   {
     if (static_cast<int>(numneigh_.size()) < nmax) {
       numneigh_.resize(nmax);
       firstneigh_.resize(nmax);
     }
-    if (entries_.size() < capacity) entries_.resize(capacity + capacity / 4);
+    if (maxrow != maxrow_ || pagesize != pagesize_) {
+      if (pages_.init(maxrow, pagesize) != 0) return false;
+      maxrow_ = maxrow;
+      pagesize_ = pagesize;
+    } else
+      pages_.reset();
     inum_ = inum;
     ilist_ = ilist;
-    used_ = 0;
     built_ = true;
+    return true;
   }
-  // the next row, for atom i: write its entries at row(i), then close it with its count
+  // the next row, for atom i, with room for maxrow entries (nullptr if memory ran out): write
+  // its entries there, then close it with its count
   int *row(int i)
   {
-    firstneigh_[i] = entries_.data() + used_;
+    firstneigh_[i] = pages_.vget();
     return firstneigh_[i];
   }
   void close(int i, int n)
   {
     numneigh_[i] = n;
-    used_ += n;
+    pages_.vgot(n);
   }
 
   bool built() const { return built_; }
   void clear() { built_ = false; }
   NeighView view() const { return {inum_, ilist_, numneigh_.data(), firstneigh_.data()}; }
-  std::size_t entries() const { return used_; }
+  std::size_t entries() const { return static_cast<std::size_t>(pages_.ndatum); }
   double memory_usage() const
   {
-    return static_cast<double>(entries_.capacity() * sizeof(int) +
-                               numneigh_.capacity() * sizeof(int) +
-                               firstneigh_.capacity() * sizeof(int *));
+    return pages_.size() +
+        static_cast<double>(numneigh_.capacity() * sizeof(int) +
+                            firstneigh_.capacity() * sizeof(int *));
   }
 
  private:
   bool built_ = false;
   int inum_ = 0;
   const int *ilist_ = nullptr;
-  std::size_t used_ = 0;
-  std::vector<int> entries_;
+  int maxrow_ = 0, pagesize_ = 0;
+  LAMMPS_NS::MyPage<int> pages_;
   std::vector<int> numneigh_;
   std::vector<int *> firstneigh_;
 };
