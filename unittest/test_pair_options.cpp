@@ -236,11 +236,14 @@ TEST(PairOptions, PruneNoComesBackFromARestartFile)
   for (const std::string option : {"prune no", "prune yes"}) {
     {
       auto lmp = open_lammps();
+      // dhdt: the lists carry the h cap (margin), so there is something to prune
       gas(lmp, "box", 2, GAS + " " + option, "sph/astro");
-      commands(lmp, {"run 2", "write_restart " + restart});
+      commands(lmp, {"fix hvar all sph/astro/h dhdt", "run 2", "write_restart " + restart});
     }
     auto lmp = open_lammps();
-    commands(lmp, {"read_restart " + restart, "fix gas all sph/astro", "run 0"});
+    commands(lmp,
+             {"read_restart " + restart, "fix gas all sph/astro", "fix hvar all sph/astro/h dhdt",
+              "run 0"});
     int dim;
     const auto *lengths =
         static_cast<double *>(lmp->force->pair->extract("pruned_list_lengths", dim));

@@ -168,6 +168,7 @@ class PairSPHAstro : public Pair {
   SPHAstro::NeighView half_view();    // the pruned half list if it covers every h, else LAMMPS'
   SPHAstro::NeighView unpruned_half_view();
   SPHAstro::HalfFromFull half_from_full() const;
+  bool nothing_to_prune() const;
   void begin_pruned(SPHAstro::PrunedList &list, const class NeighList *src);
   int *pruned_row(SPHAstro::PrunedList &list, int i);
 
