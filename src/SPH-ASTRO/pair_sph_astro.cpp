@@ -1218,7 +1218,7 @@ void PairSPHAstro::prune_lists()
       unsigned char *keep = half_keep_.data() + offset;
       for (int jj = 0; jj < jnum; jj++) {
         const int j = jlist[jj] & NEIGHMASK;
-        const bool in_half = half_rule.keeps_branchless(x, i, j);
+        const bool in_half = half_rule.keeps(x, i, j);
         keep[jj] = in_half;
         const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
         const double r2 = dx * dx + dy * dy + dz * dz;

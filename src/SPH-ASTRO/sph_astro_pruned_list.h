@@ -50,30 +50,19 @@ struct HalfFromFull {
   int nlocal;
   bool newton, triclinic;
   double delta;    // 0.01 x force->angstrom
+  // (without data-dependent branches in an orthogonal box: the prune scan's hot loop takes
+  // bitwise operations on the comparisons; test PrunedLists.BranchFreeHalfRuleIsLAMMPSRule
+  // checks them against npair_halffull.cpp's early returns)
   bool keeps(double **x, int i, int j) const
   {
     if (!newton) return j > i;
-    if (j < nlocal) return i < j;
-    const double *xi = x[i], *xj = x[j];
     if (triclinic) {
+      if (j < nlocal) return i < j;
+      const double *xi = x[i], *xj = x[j];
       if (std::fabs(xj[2] - xi[2]) > delta) return xj[2] >= xi[2];
       if (std::fabs(xj[1] - xi[1]) > delta) return xj[1] >= xi[1];
       return xj[0] >= xi[0];
     }
-    if (xj[2] < xi[2]) return false;
-    if (xj[2] == xi[2]) {
-      if (xj[1] < xi[1]) return false;
-      if (xj[1] == xi[1] && xj[0] < xi[0]) return false;
-    }
-    return true;
-  }
-  // the same decision without data-dependent branches (the prune scan's hot loop): bitwise
-  // operations on the comparisons instead of keeps()'s early returns, which follow
-  // npair_halffull.cpp line by line
-  bool keeps_branchless(double **x, int i, int j) const
-  {
-    if (!newton) return j > i;
-    if (triclinic) return keeps(x, i, j);
     const bool owned = j < nlocal;
     return (owned & (i < j)) | (!owned & above(x[i], x[j]));
   }
