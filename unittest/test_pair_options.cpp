@@ -2,8 +2,10 @@
 // density continuity (rho integrated by fix sph/astro, seed 004 eq. 33), symmetrise kernel
 // and pressure geometric (seed 000, "alternative ways to force anti-symmetry"): uniform
 // motion, conservation, energy error order, restart (settings and bit-for-bit continuation),
-// neighbour counts, and the errors for bad values and combinations. The Sod figures of the
-// options are ctests (sod_short_options_*).
+// neighbour counts, and the errors for bad values and combinations; formulation
+// pressure-energy (Saitoh & Makino 2013, Hopkins 2013): the same checks, its reduction to the
+// standard equations for uniform u, and a contact in pressure balance that feels no force. The
+// Sod figures of the options are ctests (sod_short_*).
 
 #include "lammps_fixture.h"
 
@@ -198,6 +200,7 @@ TEST_P(PairOption, RestartContinuesBitForBit)
 INSTANTIATE_TEST_SUITE_P(PairSPHAstro, PairOption,
                          ::testing::Values("", "density continuity", "symmetrise kernel",
                                            "pressure geometric", "prune no",
+                                           "formulation pressure-energy",
                                            "density continuity symmetrise kernel pressure "
                                            "geometric"));
 
@@ -206,8 +209,8 @@ TEST(PairOptions, SettingsComeBackFromARestartFile)
   // each option refuses fix sph/astro/h iterate at init: after read_restart without a new
   // pair_style that error shows that the setting was restored
   const std::string restart = "test_pair_options_settings.restart";
-  for (const std::string option :
-       {"density continuity", "symmetrise kernel", "pressure geometric", ""}) {
+  for (const std::string option : {"density continuity", "symmetrise kernel", "pressure geometric",
+                                   "formulation pressure-energy", ""}) {
     {
       auto lmp = open_lammps();
       gas(lmp, "box", 2, GAS + " " + option, "sph/astro");
@@ -286,6 +289,141 @@ TEST(DensityContinuity, DataFileRoundTrip)
   std::remove(data.c_str());
 }
 
+// ---------------------------------------------------------------- pressure-energy
+
+TEST(PressureEnergy, UniformEnergyGivesTheStandardEquations)
+{
+  // with u_j = u_i the smoothed pressure is (gamma-1) u rho_i and every pair term reduces to
+  // the density-energy one: (gamma-1)^2 u^2 / P_i = P_i / rho_i^2
+  std::map<int, double> out[2][5];
+  int k = 0;
+  for (const std::string formulation : {"density-energy", "pressure-energy"}) {
+    auto lmp = open_lammps();
+    gas(lmp, "box", 3, GAS + " formulation " + formulation, "sph/astro");
+    vary_h(lmp);
+    commands(lmp, {"set group all d_u 1.3", "velocity all create 0.3 4928459", "run 0"});
+    out[k][0] = per_atom(lmp, "f", 0);
+    out[k][1] = per_atom(lmp, "f", 1);
+    out[k][2] = per_atom(lmp, "rho");
+    out[k][3] = per_atom(lmp, "dudt");
+    out[k][4] = per_atom(lmp, "f", 2);
+    k++;
+  }
+  double scale[5] = {0, 0, 0, 0, 0}, worst[5] = {0, 0, 0, 0, 0};
+  for (int q = 0; q < 5; q++)
+    for (const auto &[id, value] : out[0][q]) {
+      scale[q] = std::max(scale[q], std::fabs(value));
+      worst[q] = std::max(worst[q], std::fabs(out[1][q].at(id) - value));
+    }
+  printf("uniform u: largest |difference| / largest value: fx %.2e fy %.2e fz %.2e rho %.2e "
+         "du/dt %.2e\n",
+         worst[0] / scale[0], worst[1] / scale[1], worst[4] / scale[4], worst[2] / scale[2],
+         worst[3] / scale[3]);
+  for (int q = 0; q < 5; q++) {
+    ASSERT_GT(scale[q], 0.0) << q;
+    EXPECT_LT(worst[q], 1e-12 * scale[q]) << q;
+  }
+}
+
+// a periodic fcc box, left half masses 1/4 and u = 1, right half masses 1/16 and u = 4 on the
+// same lattice: density 4:1 and equal pressure (the contact of shock3d, in pressure balance)
+static const double CONTACT_H = 1.5 * std::cbrt(0.25);
+static std::unique_ptr<LAMMPS> contact(const std::string &formulation)
+{
+  auto lmp = open_lammps();
+  const double h = CONTACT_H;
+  commands(lmp,
+           {"units lj",
+            "atom_style atomic",
+            "atom_modify map array sort 0 0.0",
+            "boundary p p p",
+            "lattice fcc 4.0",
+            "region box block 0 8 0 3 0 3",
+            "create_box 2 box",
+            "create_atoms 1 box",
+            "region right block 4 8 INF INF INF INF",
+            "set region right type 2",
+            "mass 1 0.25",
+            "mass 2 0.0625",
+            "pair_style " + GAS + " formulation " + formulation,
+            "pair_coeff * *",
+            "fix gas all sph/astro courant 0.3",
+            "set group all d_h " + num(h),
+            "set type 1 d_u 1.0",
+            "set type 2 d_u 4.0",
+            "neighbor " + num(0.3 * h) + " bin",
+            "neigh_modify every 1 delay 0 check yes",
+            "compute sum all sph/astro/global",
+            "compute p all sph/astro/atom pressure",
+            "thermo_style custom step c_sum[12]",
+            "run 0"});
+  return lmp;
+}
+
+static double largest_force(const std::unique_ptr<LAMMPS> &lmp)
+{
+  double worst = 0.0;
+  for (int i = 0; i < lmp->atom->nlocal; i++)
+    for (int d = 0; d < 3; d++) worst = std::max(worst, std::fabs(lmp->atom->f[i][d]));
+  return worst;
+}
+
+TEST(PressureEnergy, ContactInPressureBalanceFeelsNoForce)
+{
+  // m_j u_j is the same for every particle, so the smoothed pressure is uniform and each
+  // particle's pressure force is a multiple of sum_j grad W_ij = 0 on the perfect lattice; the
+  // density summation instead smooths rho across the contact, and rho u gives the two layers
+  // next to it a pressure blip that pushes them apart
+  const double gm1 = 2.0 / 3.0;
+  double blip[2], force[2];
+  int k = 0;
+  for (const std::string formulation : {"density-energy", "pressure-energy"}) {
+    auto lmp = contact(formulation);
+    auto *p = static_cast<double *>(
+        lammps_extract_compute(lmp.get(), "p", LMP_STYLE_ATOM, LMP_TYPE_VECTOR));
+    ASSERT_NE(p, nullptr);
+    const auto rho = per_atom(lmp, "rho");
+    const auto u = per_atom(lmp, "u");
+    double pmin = INFINITY, pmax = 0.0, p_left = 0.0;
+    for (int i = 0; i < lmp->atom->nlocal; i++) {
+      pmin = std::min(pmin, p[i]);
+      pmax = std::max(pmax, p[i]);
+      if (lmp->atom->type[i] == 1) p_left = p[i];
+      // P = (gamma-1) rho u in both formulations
+      const int id = lmp->atom->tag[i];
+      EXPECT_NEAR(p[i], gm1 * rho.at(id) * u.at(id), 1e-13 * p[i]);
+    }
+    blip[k] = (pmax - pmin) / p_left;
+    // the scale of a pressure force on a left particle: m P / (rho h), m = 1/4, rho ~ 1
+    force[k] = largest_force(lmp) / (0.25 * p_left / CONTACT_H);
+    if (formulation == "pressure-energy") {
+      // rho jumps by 4 from one layer to the next (the left and right lattice sums are equal)
+      double rho_left = 0.0, rho_right = 0.0;
+      for (int i = 0; i < lmp->atom->nlocal; i++)
+        (lmp->atom->type[i] == 1 ? rho_left : rho_right) = rho.at(lmp->atom->tag[i]);
+      for (const auto &[id, r] : rho)
+        EXPECT_NEAR(r, u.at(id) == 1.0 ? rho_left : rho_right, 1e-12 * r) << "atom " << id;
+      EXPECT_NEAR(rho_left / rho_right, 4.0, 1e-12);
+      // and the contact stays in place: no particle moves beyond round-off in 50 steps
+      commands(lmp, {"run 50"});
+      double vmax = 0.0;
+      for (int i = 0; i < lmp->atom->nlocal; i++)
+        for (int d = 0; d < 3; d++) vmax = std::max(vmax, std::fabs(lmp->atom->v[i][d]));
+      printf("pressure-energy contact after 50 steps: largest |v| %.2e (c_s %.3f)\n", vmax,
+             std::sqrt(gm1 * 5.0 / 3.0));
+      EXPECT_LT(vmax, 1e-10);
+    }
+    k++;
+  }
+  printf("contact 4:1 in pressure balance: (P_max - P_min) / P %.3e / %.3e, largest force "
+         "(P/h units) %.3e / %.3e (density-energy / pressure-energy)\n",
+         blip[0], blip[1], force[0], force[1]);
+  EXPECT_GT(blip[0], 0.1);
+  EXPECT_LT(blip[1], 1e-12);
+  EXPECT_GT(force[0], 0.1);
+  EXPECT_LT(force[1], 1e-12);
+}
+
 // ---------------------------------------------------------------- per-atom output
 
 TEST(DensityContinuity, NeighbourCountsMatchTheSummation)
@@ -342,8 +480,12 @@ TEST_F(BadOptionInput, KeywordValuesNameTheStyleTheValueAndTheChoices)
   expect_error("pair_style sph/astro symmetrize kernel",
                "unknown keyword 'symmetrize'; allowed: kernel, eos, viscosity, balsara, "
                "reconstruct, conductivity, conduction, epsilon, density, symmetrise, pressure, "
-               "prune");
+               "formulation, prune");
   expect_error("pair_style sph/astro prune", "Illegal pair_style sph/astro prune");
+  expect_error("pair_style sph/astro formulation entropy-energy",
+               "pair_style sph/astro: unknown formulation 'entropy-energy'; allowed: "
+               "density-energy, pressure-energy");
+  expect_error("pair_style sph/astro formulation", "Illegal pair_style sph/astro formulation");
   expect_error("pair_style sph/astro prune maybe", "Expected boolean parameter instead of 'maybe'");
   expect_error("pair_style sph/astro reconstruct yes gate 100",
                "reconstruct gate 100 must be an integer in 0-64");
@@ -375,6 +517,34 @@ TEST_F(BadOptionInput, GeometricPressureNeedsTheEnergyEquation)
   expect_error("run 0",
                "pair_style sph/astro pressure geometric needs fix sph/astro thermal "
                "energy");
+}
+
+TEST_F(BadOptionInput, PressureEnergyNamesWhatItNeeds)
+{
+  const std::string pe = "pair_style sph/astro formulation pressure-energy needs ";
+  setup_with("formulation pressure-energy");
+  commands(lmp, {"fix hvar all sph/astro/h iterate"});
+  expect_error("run 0", pe + "fixed h or fix sph/astro/h dhdt");
+  commands(lmp, {"unfix hvar"});
+  for (const auto &[options, needs] : std::vector<std::pair<std::string, std::string>>{
+           {"eos isothermal 1.0", "eos ideal"},
+           {"density continuity", "density summation"},
+           {"symmetrise kernel", "symmetrise hmean"},
+           {"pressure geometric", "pressure standard"}}) {
+    commands(lmp, {"pair_style sph/astro " + options + " formulation pressure-energy"});
+    if (options == "eos isothermal 1.0") commands(lmp, {"pair_coeff * *"});
+    expect_error("run 0", pe + needs);
+  }
+  commands(lmp,
+           {"pair_style " + GAS + " formulation pressure-energy", "unfix gas",
+            "fix gas all sph/astro thermal entropy"});
+  expect_error("run 0", pe + "fix sph/astro thermal energy");
+  commands(lmp, {"unfix gas", "fix gas all sph/astro", "run 0"});    // fine
+  // u = 0 has no pressure-energy density: the error names the atom
+  commands(lmp, {"set atom 3 d_u 0.0"});
+  expect_error("run 0",
+               "formulation pressure-energy: atom 3 has specific internal energy u = 0; this "
+               "formulation needs u > 0");
 }
 
 int main(int argc, char **argv)

@@ -27,6 +27,15 @@
 //                       du_i/dt = sum_j m_j sqrt(P_i P_j)/(rho_i rho_j) v_ij . grad_i W_ij + visc.
 //                       (seed 000 ibid.; the energy equation in the form of the force, as
 //                       seed 004 eqs. 41-42 pair with eqs. 23 and 26)
+// Keyword formulation pressure-energy (fixed h and dh/dt; Saitoh & Makino 2013, ApJ 768, 44,
+// "density-independent SPH"; Hopkins 2013, MNRAS 428, 2840, eqs. 17-19 with f_ij = 1):
+//   pass 1  P_i = (gamma-1) sum_j m_j u_j W_ij,  rho_i = P_i / ((gamma-1) u_i)  (u_i > 0)
+//   pass 2  dv_i/dt = -sum_j m_j [(gamma-1)^2 u_i u_j (1/P_i + 1/P_j) + Pi_ij] grad_i W_ij
+//           du_i/dt = (gamma-1)^2 u_i / P_i sum_j m_j u_j v_ij . grad_i W_ij + visc.
+//           div v_i = -1/rho_i sum_j m_j (u_j/u_i) v_ij . grad_i W_ij
+//   With uniform u these are the standard equations; across a contact in pressure balance P is
+//   smooth and rho jumps with u from one particle to the next (no pressure blip). Pair by pair
+//   the two P dV terms and the force's work cancel, so energy is conserved as before.
 // Keyword reconstruct: the viscosity (only) sees v_ij . r_ij of the velocities reconstructed
 // to the pair midpoint with the linearly exact grad v, a van Leer limiter, a noise trigger and
 // a smoothness gate (sph_astro_reconstruction.h); the energy equation keeps the true v_ij, so
@@ -116,7 +125,8 @@ void PairSPHAstro::grow_work_arrays()
 {
   // (re)allocate also when curl v or v_sig became needed after the arrays were made
   if (atom->nmax <= nmax_ && (!curl_on_ || curlv_) && (!signal_viscosity() || vsigmax_) &&
-      (!pressure_geometric_ || pgeo_) && (!reconstruction() || vgrad_) && (!prune_on_ || hprune_))
+      (!(pressure_geometric_ || pressure_energy_) || pgeo_) && (!reconstruction() || vgrad_) &&
+      (!prune_on_ || hprune_))
     return;
   nmax_ = MAX(nmax_, atom->nmax);
   if (prune_on_) memory->grow(hprune_, nmax_, "pair:sph/astro:hprune");    // kept until a build
@@ -144,7 +154,7 @@ void PairSPHAstro::grow_work_arrays()
     memory->create(vgrad_, nmax_, VGRAD_DATA, "pair:sph/astro:vgrad");
   }
   memory->destroy(pgeo_);
-  if (pressure_geometric_) memory->create(pgeo_, nmax_, "pair:sph/astro:pgeo");
+  if (pressure_geometric_ || pressure_energy_) memory->create(pgeo_, nmax_, "pair:sph/astro:pgeo");
   memory->create(pressure_, nmax_, "pair:sph/astro:pressure");
   memory->create(soundspeed_, nmax_, "pair:sph/astro:soundspeed");
   memory->create(vdotgradw_, nmax_, "pair:sph/astro:vdotgradw");
@@ -158,6 +168,7 @@ void PairSPHAstro::grow_work_arrays()
                         [balsara yes|no] [conductivity ALPHA_U] [conduction KAPPA]
                         [epsilon EPS] [density summation|continuity]
                         [symmetrise hmean|kernel] [pressure standard|geometric]
+                        [formulation density-energy|pressure-energy]
 ------------------------------------------------------------------------- */
 
 void PairSPHAstro::settings(int narg, char **arg)
@@ -179,6 +190,7 @@ void PairSPHAstro::settings(int narg, char **arg)
   density_continuity_ = false;
   symmetrise_kernel_ = false;
   pressure_geometric_ = false;
+  pressure_energy_ = false;
   prune_on_ = true;
   int iarg = 0;
   while (iarg < narg) {
@@ -363,6 +375,20 @@ void PairSPHAstro::settings(int narg, char **arg)
                    "pair_style sph/astro: unknown pressure '{}'; allowed: standard, geometric",
                    value);
       iarg += 2;
+    } else if (key == "formulation") {
+      if (iarg + 2 > narg)
+        utils::missing_cmd_args(FLERR, "pair_style sph/astro formulation", error);
+      const std::string value = arg[iarg + 1];
+      if (value == "density-energy")
+        pressure_energy_ = false;
+      else if (value == "pressure-energy")
+        pressure_energy_ = true;
+      else
+        error->all(FLERR,
+                   "pair_style sph/astro: unknown formulation '{}'; allowed: density-energy, "
+                   "pressure-energy",
+                   value);
+      iarg += 2;
     } else if (key == "prune") {
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_style sph/astro prune", error);
       prune_on_ = utils::logical(FLERR, arg[iarg + 1], false, lmp) == 1;
@@ -371,7 +397,7 @@ void PairSPHAstro::settings(int narg, char **arg)
       error->all(FLERR,
                  "pair_style sph/astro: unknown keyword '{}'; allowed: kernel, eos, viscosity, "
                  "balsara, reconstruct, conductivity, conduction, epsilon, density, symmetrise, "
-                 "pressure, prune",
+                 "pressure, formulation, prune",
                  key);
   }
   // the integrated density and its prediction live in their own per-atom state; it is
@@ -467,6 +493,23 @@ void PairSPHAstro::init_style()
                "pair_style sph/astro pressure geometric needs fix sph/astro thermal energy: with "
                "thermal entropy the P dV work is P_i/rho_i^2 drho_i/dt, which does not match the "
                "geometric-mean force");
+  if (pressure_energy_) {
+    const char *what = nullptr;
+    if (eos_.type != EOSType::IDEAL)
+      what = "eos ideal (the smoothed pressure is (gamma-1) sum_j m_j u_j W_ij)";
+    else if (entropy_)
+      what = "fix sph/astro thermal energy (it evolves u; thermal entropy is not supported)";
+    else if (hmode_ == HMode::GRADH)
+      what = "fixed h or fix sph/astro/h dhdt (its grad-h terms with fix sph/astro/h iterate "
+             "are not implemented)";
+    else if (density_continuity_)
+      what = "density summation (its density follows from the smoothed pressure)";
+    else if (symmetrise_kernel_)
+      what = "symmetrise hmean";
+    else if (pressure_geometric_)
+      what = "pressure standard (it has a pressure term of its own)";
+    if (what) error->all(FLERR, "pair_style sph/astro formulation pressure-energy needs {}", what);
+  }
   if (density_continuity_ && !find_continuity_state(lmp, continuity_index_))
     error->all(FLERR,
                "pair_style sph/astro density continuity: the per-atom state fix {} is missing",
@@ -624,9 +667,11 @@ void PairSPHAstro::finish_thermal_rates(bool gradh, bool pdv_done)
      rho_i = sum_j m_j W_ij,  W_ij = W(r_ij, h_ij), h_ij = (h_i + h_j)/2          (hmean)
                               W_ij = (W(r_ij, h_i) + W(r_ij, h_j))/2             (KM: kernel)
    including the particle's own m_i W(0, h_i); N_i counts the partners inside the support.
+   PE (formulation pressure-energy): the weights are m_j u_j, so d_rho holds the energy
+   density sum_j m_j u_j W_ij = P_i/(gamma-1) until pressure_energy_density() divides by u_i.
 ------------------------------------------------------------------------- */
 
-template <class KERNEL, int DIM, bool KM> void PairSPHAstro::density_sum()
+template <class KERNEL, int DIM, bool KM, bool PE> void PairSPHAstro::density_sum()
 {
   using K = Kernel<KERNEL, DIM>;
   double **x = atom->x;
@@ -635,6 +680,7 @@ template <class KERNEL, int DIM, bool KM> void PairSPHAstro::density_sum()
   const double *mass = atom->mass;
   double *rho = atom->dvector[state_.rho];
   const double *h = atom->dvector[state_.h];
+  const double *uest = atom->dvector[state_.uest];    // PE: owned and ghost (Stage::ENERGY)
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
   const int newton_pair = force->newton_pair;
@@ -660,7 +706,7 @@ template <class KERNEL, int DIM, bool KM> void PairSPHAstro::density_sum()
     const double hi = h[i];
     const double hinvi = 1.0 / hi;
     const double hR2i = R2 * hi * hi;
-    const double mi = rmass ? rmass[i] : mass[type[i]];
+    const double mi = (rmass ? rmass[i] : mass[type[i]]) * (PE ? uest[i] : 1.0);
     double rhoi = mi * sigma * inv_h_pow_dim<DIM>(hinvi) * w0;
     double ni = 0.0;
     const int *jlist = firstneigh[i];
@@ -685,7 +731,7 @@ template <class KERNEL, int DIM, bool KM> void PairSPHAstro::density_sum()
         const double hinv = 1.0 / hij;
         wij = sigma * inv_h_pow_dim<DIM>(hinv) * K::w(std::sqrt(r2) * hinv);
       }
-      const double mj = rmass ? rmass[j] : mass[type[j]];
+      const double mj = (rmass ? rmass[j] : mass[type[j]]) * (PE ? uest[j] : 1.0);
       rhoi += mj * wij;
       ni += 1.0;
       if (newton_pair || j < nlocal) {
@@ -699,6 +745,24 @@ template <class KERNEL, int DIM, bool KM> void PairSPHAstro::density_sum()
   if (newton_pair) {
     comm_stage_ = Stage::DENSITY;
     comm->reverse_comm(this);
+  }
+}
+
+// formulation pressure-energy: rho_i = (sum_j m_j u_j W_ij) / u_i, the density that makes the
+// ideal-gas pressure (gamma-1) rho_i u_i equal the smoothed one (Saitoh & Makino 2013, the
+// volume element m_i u_i / sum_j m_j u_j W_ij)
+void PairSPHAstro::pressure_energy_density()
+{
+  const int nlocal = atom->nlocal;
+  double *rho = atom->dvector[state_.rho];
+  const double *uest = atom->dvector[state_.uest];
+  for (int i = 0; i < nlocal; i++) {
+    if (!(uest[i] > 0.0) || !std::isfinite(uest[i]))
+      error->one(FLERR,
+                 "pair_style sph/astro formulation pressure-energy: atom {} has specific internal "
+                 "energy u = {}; this formulation needs u > 0 (rho = P/((gamma-1) u))",
+                 atom->tag[i], uest[i]);
+    rho[i] /= uest[i];
   }
 }
 
@@ -913,6 +977,7 @@ template <class KERNEL, int DIM, int VSUMS> void PairSPHAstro::density_gradh()
 int PairSPHAstro::pair_form() const
 {
   if (hmode_ == HMode::GRADH) return GRADH;
+  if (pressure_energy_) return HMEAN_PRESSURE_ENERGY;
   if (symmetrise_kernel_) return pressure_geometric_ ? KMEAN_GEOMETRIC : KMEAN;
   return pressure_geometric_ ? HMEAN_GEOMETRIC : HMEAN;
 }
@@ -946,11 +1011,16 @@ template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
     density_gradh<KERNEL, DIM, VSUMS_CURL>();
   } else if (form == GRADH)
     density_gradh<KERNEL, DIM, VSUMS_NONE>();
-  else if (!density_continuity_ || integrator_->density_needs_init()) {
+  else if (form == HMEAN_PRESSURE_ENERGY) {
+    comm_stage_ = Stage::ENERGY;    // the ghosts' u of this step
+    comm->forward_comm(this, 1);
+    density_sum<KERNEL, DIM, false, true>();
+    pressure_energy_density();
+  } else if (!density_continuity_ || integrator_->density_needs_init()) {
     if (symmetrise_kernel_)
-      density_sum<KERNEL, DIM, true>();
+      density_sum<KERNEL, DIM, true, false>();
     else
-      density_sum<KERNEL, DIM, false>();
+      density_sum<KERNEL, DIM, false, false>();
     if (density_continuity_) {    // the integrated density starts from one summation
       const double *rho = atom->dvector[state_.rho];
       double *rhoest = atom->dvector[continuity_index_.rhoest];
@@ -982,6 +1052,10 @@ template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
     const double *rho = eval_density();
     const int nall = nlocal + atom->nghost;
     for (int i = 0; i < nall; i++) pgeo_[i] = pressure_geometric_factor(pressure_[i], rho[i]);
+  } else if (pressure_energy_) {    // (gamma-1) u = P/rho of owned and ghost atoms
+    const double *rho = eval_density();
+    const int nall = nlocal + atom->nghost;
+    for (int i = 0; i < nall; i++) pgeo_[i] = pressure_[i] / rho[i];
   }
   switch (form) {
     case GRADH:
@@ -992,6 +1066,9 @@ template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
       break;
     case HMEAN_GEOMETRIC:
       dispatch_force<KERNEL, DIM, HMEAN_GEOMETRIC>();
+      break;
+    case HMEAN_PRESSURE_ENERGY:
+      dispatch_force<KERNEL, DIM, HMEAN_PRESSURE_ENERGY>();
       break;
     case KMEAN_GEOMETRIC:
       dispatch_force<KERNEL, DIM, KMEAN_GEOMETRIC>();
@@ -1388,6 +1465,11 @@ int PairSPHAstro::pack_forward_comm(int n, int *list, double *buf, int /*pbc_fla
     for (int k = 0; k < n; k++) buf[m++] = h[list[k]];
     return m;
   }
+  if (comm_stage_ == Stage::ENERGY) {
+    const double *uest = atom->dvector[state_.uest];
+    for (int k = 0; k < n; k++) buf[m++] = uest[list[k]];
+    return m;
+  }
   if (comm_stage_ == Stage::VELOCITY) {
     for (int k = 0; k < n; k++) {
       buf[m++] = vest[list[k]][0];
@@ -1429,6 +1511,11 @@ void PairSPHAstro::unpack_forward_comm(int n, int first, double *buf)
   int m = 0;
   if (comm_stage_ == Stage::SMOOTHING_LENGTH) {
     for (int i = first; i < first + n; i++) h[i] = buf[m++];
+    return;
+  }
+  if (comm_stage_ == Stage::ENERGY) {
+    double *uest = atom->dvector[state_.uest];
+    for (int i = first; i < first + n; i++) uest[i] = buf[m++];
     return;
   }
   if (comm_stage_ == Stage::VELOCITY) {
@@ -1574,9 +1661,10 @@ void PairSPHAstro::write_restart_settings(FILE *fp)
   fwrite(dval, sizeof(double), 7, fp);
   fwrite(&cond_kappa_, sizeof(double), 1, fp);    // physical heat conduction
   // the seeds' other choices: density continuity, symmetrise kernel, pressure geometric
-  // 8: prune no (restart files from before the keyword read as prune yes)
+  // 8: prune no (restart files from before the keyword read as prune yes); 16: formulation
+  // pressure-energy (older files: density-energy)
   const int options = (density_continuity_ ? 1 : 0) + (symmetrise_kernel_ ? 2 : 0) +
-      (pressure_geometric_ ? 4 : 0) + (prune_on_ ? 0 : 8);
+      (pressure_geometric_ ? 4 : 0) + (prune_on_ ? 0 : 8) + (pressure_energy_ ? 16 : 0);
   fwrite(&options, sizeof(int), 1, fp);
   fwrite(&recon_trigger_, sizeof(double), 1, fp);
   fwrite(&recon_gate_, sizeof(int), 1, fp);
@@ -1602,6 +1690,7 @@ void PairSPHAstro::read_restart_settings(FILE *fp)
   symmetrise_kernel_ = (options & 2) != 0;
   pressure_geometric_ = (options & 4) != 0;
   prune_on_ = (options & 8) == 0;
+  pressure_energy_ = (options & 16) != 0;
   MPI_Bcast(ival, 3, MPI_INT, 0, world);
   MPI_Bcast(dval, 7, MPI_DOUBLE, 0, world);
   kernel_ = static_cast<KernelType>(ival[0]);

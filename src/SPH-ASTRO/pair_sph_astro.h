@@ -93,6 +93,8 @@ class PairSPHAstro : public Pair {
   bool density_continuity() const { return density_continuity_; }
   bool symmetrise_kernel() const { return symmetrise_kernel_; }
   bool pressure_geometric() const { return pressure_geometric_; }
+  // formulation pressure-energy: P from the kernel-smoothed energy density, rho = P/((gamma-1) u)
+  bool pressure_energy() const { return pressure_energy_; }
   // the density of the latest (or current) force evaluation, owned and ghost atoms
   double *eval_density() const;
   // neighbours inside the kernel support of the latest force evaluation (owned atoms). With
@@ -124,9 +126,15 @@ class PairSPHAstro : public Pair {
   bool density_continuity_ = false;
   bool symmetrise_kernel_ = false;
   bool pressure_geometric_ = false;
+  // formulation pressure-energy (fixed h and dh/dt; Saitoh & Makino 2013, ApJ 768, 44;
+  // Hopkins 2013, MNRAS 428, 2840): the pressure is summed, not the density,
+  //   P_i = (gamma-1) sum_j m_j u_j W_ij,   rho_i = P_i / ((gamma-1) u_i),
+  // so that P is smooth across a contact discontinuity in pressure balance
+  bool pressure_energy_ = false;
   SPHAstro::ContinuityIndex continuity_index_;
   bigint counts_step_ = -1;    // step whose force evaluation nneigh_ was counted in
-  double *pgeo_ = nullptr;     // pressure geometric: sqrt(P)/rho (owned + ghost)
+  // pressure geometric: sqrt(P)/rho; pressure-energy: (gamma-1) u = P/rho (owned + ghost)
+  double *pgeo_ = nullptr;
 
   // physical heat conduction (pair_sph_astro_conduction.cpp): a separate pass after the
   // force pass, only when kappa > 0; conduct_ holds this step's du/dt from it (owned + ghost)
@@ -194,7 +202,17 @@ class PairSPHAstro : public Pair {
   bigint computed_step_ = -1;
   int computed_nlocal_ = -1;
 
-  enum class Stage { DENSITY, FORCE, SMOOTHING_LENGTH, VELOCITY, CURL, VGRAD, CONDUCTION, COUNT };
+  enum class Stage {
+    DENSITY,
+    FORCE,
+    SMOOTHING_LENGTH,
+    VELOCITY,
+    ENERGY,
+    CURL,
+    VGRAD,
+    CONDUCTION,
+    COUNT
+  };
   Stage comm_stage_ = Stage::DENSITY;
 
   void allocate();
@@ -222,11 +240,12 @@ class PairSPHAstro : public Pair {
   // pair forms of the force pass (template parameter FORM): how W_ij is symmetrised and how
   // the pressure term is; grad-h terms come with their own kernels and the standard pressure
   enum PairForm {
-    HMEAN = 0,              // W(r_ij, h_ij), P_i/rho_i^2 + P_j/rho_j^2
-    GRADH = 1,              // W(h_i), W(h_j) with grad-h factors (fix sph/astro/h iterate)
-    KMEAN = 2,              // (W(h_i) + W(h_j))/2, P_i/rho_i^2 + P_j/rho_j^2
-    HMEAN_GEOMETRIC = 3,    // W(r_ij, h_ij), 2 sqrt(P_i P_j)/(rho_i rho_j)
-    KMEAN_GEOMETRIC = 4     // (W(h_i) + W(h_j))/2, 2 sqrt(P_i P_j)/(rho_i rho_j)
+    HMEAN = 0,                   // W(r_ij, h_ij), P_i/rho_i^2 + P_j/rho_j^2
+    GRADH = 1,                   // W(h_i), W(h_j) with grad-h factors (fix sph/astro/h iterate)
+    KMEAN = 2,                   // (W(h_i) + W(h_j))/2, P_i/rho_i^2 + P_j/rho_j^2
+    HMEAN_GEOMETRIC = 3,         // W(r_ij, h_ij), 2 sqrt(P_i P_j)/(rho_i rho_j)
+    KMEAN_GEOMETRIC = 4,         // (W(h_i) + W(h_j))/2, 2 sqrt(P_i P_j)/(rho_i rho_j)
+    HMEAN_PRESSURE_ENERGY = 5    // W(r_ij, h_ij), (gamma-1)^2 u_i u_j (1/P_i + 1/P_j)
   };
   static constexpr bool form_gradh(int f) { return f == GRADH; }
   static constexpr bool form_kmean(int f) { return f == KMEAN || f == KMEAN_GEOMETRIC; }
@@ -234,6 +253,7 @@ class PairSPHAstro : public Pair {
   {
     return f == HMEAN_GEOMETRIC || f == KMEAN_GEOMETRIC;
   }
+  static constexpr bool form_pressure_energy(int f) { return f == HMEAN_PRESSURE_ENERGY; }
   int pair_form() const;
   // velocity sums taken with the density (GRADH) or in a pass of their own: none, the div and
   // curl sums (Balsara, switches), or the full gradient sums (reconstruction; div and curl
@@ -243,7 +263,9 @@ class PairSPHAstro : public Pair {
   void velocity_curl_finish(bool gradh);
   template <int DIM> void velocity_gradient_finish(bool gradh);
   void forward_predicted_velocities();
-  template <class KERNEL, int DIM, bool KM> void density_sum();
+  // PE (pressure-energy): the same pass sums m_j u_j W_ij, then rho_i = that / u_i
+  template <class KERNEL, int DIM, bool KM, bool PE> void density_sum();
+  void pressure_energy_density();
   template <class KERNEL, int DIM, int VSUMS> void density_gradh();
   void count_neighbours();
   template <class KERNEL, int DIM, int FORM, bool ENERGY, int VISC, bool COND> void force_pass();

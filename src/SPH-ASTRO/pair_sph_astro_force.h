@@ -37,6 +37,10 @@ using namespace SPHAstro;
    it gives is the same pair force along r_ij, and its heating 1/2 m_j Pi_ij v_ij . gradbar W
    keeps the true v_ij, so energy is conserved pair by pair as before. It acts only on pairs
    that approach both truly and reconstructed, so that heating is never negative.
+   HMEAN_PRESSURE_ENERGY (Hopkins 2013 eqs. 17-19, f_ij = 1): pressure term
+   e_i e_j (1/P_i + 1/P_j), e = (gamma-1) u, and the P dV sum sum_j m_j e_j v_ij . grad W
+   divided by e_i at the end, so that finish_thermal_rates' P_i/rho_i^2 x that sum is
+   (gamma-1)^2 u_i/P_i sum_j m_j u_j v_ij . grad_i W_ij (rho_i = P_i/e_i).
 ------------------------------------------------------------------------- */
 
 template <class KERNEL, int DIM, int FORM, bool ENERGY, int VISC, bool COND>
@@ -46,6 +50,7 @@ void PairSPHAstro::force_pass()
   constexpr bool GH = form_gradh(FORM);
   constexpr bool KM = form_kmean(FORM);
   constexpr bool GEO = form_geometric(FORM);
+  constexpr bool PE = form_pressure_energy(FORM);
   double **x = atom->x;
   double **f = atom->f;
   const int *type = atom->type;
@@ -72,8 +77,9 @@ void PairSPHAstro::force_pass()
   const double *alpha_atom = alpha_atom_;    // per-atom alpha of a switch, or null
   const double beta_factor = alpha > 0.0 ? beta / alpha : 0.0;
   const double alpha_u = cond_alpha_;
-  const double *pgeo = pgeo_;    // geometric forms: sqrt(P)/rho of owned and ghost atoms
-  double **vgrad = vgrad_;       // reconstruction: symmetric grad v and spacing (owned + ghost)
+  // geometric forms: sqrt(P)/rho; pressure-energy: e = (gamma-1) u (owned and ghost atoms)
+  const double *pgeo = pgeo_;
+  double **vgrad = vgrad_;    // reconstruction: symmetric grad v and spacing (owned + ghost)
   const int gate = recon_gate_;
 
   for (int i = 0; i < nzero; i++) {
@@ -91,8 +97,11 @@ void PairSPHAstro::force_pass()
     const double hR2i = R2 * hi * hi;
     const double mi = rmass ? rmass[i] : mass[type[i]];
     const double rhoi = rho[i];
-    // P_i/(Omega_i rho_i^2), or g_i = sqrt(P_i)/rho_i for the geometric forms
-    const double prhoi = GEO ? pgeo[i] : pressure_[i] / ((GH ? omega_[i] : 1.0) * rhoi * rhoi);
+    // P_i/(Omega_i rho_i^2), or g_i = sqrt(P_i)/rho_i for the geometric forms, or e_i / P_i
+    const double prhoi = GEO ? pgeo[i]
+        : PE                 ? pgeo[i] / pressure_[i]
+                             : pressure_[i] / ((GH ? omega_[i] : 1.0) * rhoi * rhoi);
+    const double ei = PE ? pgeo[i] : 0.0;
     const double ci = soundspeed_[i];
     double fxi = 0.0, fyi = 0.0, fzi = 0.0, vgwi = 0.0, heati = 0.0, vsigi = 0.0;
     const int *jlist = firstneigh[i];
@@ -124,7 +133,10 @@ void PairSPHAstro::force_pass()
       const double dwbar = 0.5 * (dwi + dwj);
       const double mj = rmass ? rmass[j] : mass[type[j]];
       const double rhoj = rho[j];
-      const double prhoj = GEO ? pgeo[j] : pressure_[j] / ((GH ? omega_[j] : 1.0) * rhoj * rhoj);
+      const double prhoj = GEO ? pgeo[j]
+          : PE                 ? pgeo[j] / pressure_[j]
+                               : pressure_[j] / ((GH ? omega_[j] : 1.0) * rhoj * rhoj);
+      const double ej = PE ? pgeo[j] : 0.0;
       const double dvx = vxi - vest[j][0], dvy = vyi - vest[j][1], dvz = vzi - vest[j][2];
       const double vdotr = dvx * dx + dvy * dy + dvz * dz;
       double visc = 0.0;
@@ -152,12 +164,14 @@ void PairSPHAstro::force_pass()
                                    0.5 * (ci + soundspeed_[j]), 0.5 * (rhoi + rhoj), shear);
       }
       const double pterm = GEO ? pressure_geometric_term(prhoi, prhoj) * dwi
+          : PE                 ? ej * prhoi * dwi + ei * prhoj * dwj
                                : prhoi * dwi + prhoj * dwj;
       const double fpair = -mi * mj * (pterm + visc * dwbar);
       fxi += dx * fpair;
       fyi += dy * fpair;
       fzi += dz * fpair;
-      vgwi += continuity_rate(mj, vdotr, dwi);    // drho_i/dt, -rho_i div v_i
+      // drho_i/dt, -rho_i div v_i; PE: sum_j m_j e_j v_ij . grad W, divided by e_i below
+      vgwi += continuity_rate(PE ? mj * ej : mj, vdotr, dwi);
       // geometric forms: P dV work g_i g_j v_ij . grad W, the same for i and j
       const double pdv = (ENERGY && GEO) ? prhoi * prhoj * vdotr * dwi : 0.0;
       if (ENERGY && GEO) heati += mj * pdv;
@@ -173,7 +187,7 @@ void PairSPHAstro::force_pass()
         f[j][0] -= dx * fpair;
         f[j][1] -= dy * fpair;
         f[j][2] -= dz * fpair;
-        vdotgradw_[j] += continuity_rate(mi, vdotr, dwj);
+        vdotgradw_[j] += continuity_rate(PE ? mi * ei : mi, vdotr, dwj);
         if (ENERGY && GEO) dudt[j] += mi * pdv;
         if (ENERGY && VISC) dudt[j] += 0.5 * mi * visc * vdotr * dwbar;
         if (COND) dudt[j] -= mi * cond;
@@ -191,6 +205,8 @@ void PairSPHAstro::force_pass()
     comm_stage_ = Stage::FORCE;
     comm->reverse_comm(this);
   }
+  if (PE)
+    for (int i = 0; i < nlocal; i++) vdotgradw_[i] /= pgeo[i];
   for (int i = 0; i < nlocal; i++) divv_[i] = -vdotgradw_[i] / ((GH ? omega_[i] : 1.0) * rho[i]);
   if (ENERGY) finish_thermal_rates(GH, GEO);
 }
@@ -221,8 +237,13 @@ template <class KERNEL, int DIM, int FORM> void PairSPHAstro::dispatch_force()
     SPH_ASTRO_FORCE(E, NO_VISCOSITY, C);                                         \
   }
   if (cond) SPH_ASTRO_FORCE_VISC(true, true);
-  if (energy) SPH_ASTRO_FORCE_VISC(true, false);
-  SPH_ASTRO_FORCE_VISC(false, false);
+  // pressure-energy always evolves u (init_style asks for eos ideal)
+  if constexpr (form_pressure_energy(FORM)) {
+    SPH_ASTRO_FORCE_VISC(true, false);
+  } else {
+    if (energy) SPH_ASTRO_FORCE_VISC(true, false);
+    SPH_ASTRO_FORCE_VISC(false, false);
+  }
 #undef SPH_ASTRO_FORCE_VISC
 #undef SPH_ASTRO_FORCE
 }
@@ -239,7 +260,11 @@ template <class KERNEL, int DIM, int FORM> void PairSPHAstro::dispatch_force()
   PREFIX template void                                                                       \
   PairSPHAstro::dispatch_force<SPHAstro::KT, 2, PairSPHAstro::KMEAN_GEOMETRIC>();            \
   PREFIX template void                                                                       \
-  PairSPHAstro::dispatch_force<SPHAstro::KT, 3, PairSPHAstro::KMEAN_GEOMETRIC>();
+  PairSPHAstro::dispatch_force<SPHAstro::KT, 3, PairSPHAstro::KMEAN_GEOMETRIC>();            \
+  PREFIX template void                                                                       \
+  PairSPHAstro::dispatch_force<SPHAstro::KT, 2, PairSPHAstro::HMEAN_PRESSURE_ENERGY>();      \
+  PREFIX template void                                                                       \
+  PairSPHAstro::dispatch_force<SPHAstro::KT, 3, PairSPHAstro::HMEAN_PRESSURE_ENERGY>();
 #define SPH_ASTRO_OPTION_FORMS(PREFIX)                \
   SPH_ASTRO_FORMS_OF_KERNEL(PREFIX, KernelCubic)      \
   SPH_ASTRO_FORMS_OF_KERNEL(PREFIX, KernelQuintic)    \
