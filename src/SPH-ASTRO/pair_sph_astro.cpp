@@ -28,7 +28,7 @@
 //                       (seed 000 ibid.; the energy equation in the form of the force, as
 //                       seed 004 eqs. 41-42 pair with eqs. 23 and 26)
 // Keyword formulation pressure-energy (fixed h and dh/dt; Saitoh & Makino 2013, ApJ 768, 44,
-// "density-independent SPH"; Hopkins 2013, MNRAS 428, 2840, eqs. 17-19 with f_ij = 1):
+// "density-independent SPH"; Hopkins 2013, MNRAS 428, 2840, eqs. 16-18 with f_ij = 1):
 //   pass 1  P_i = (gamma-1) sum_j m_j u_j W_ij,  rho_i = P_i / ((gamma-1) u_i)  (u_i > 0)
 //   pass 2  dv_i/dt = -sum_j m_j [(gamma-1)^2 u_i u_j (1/P_i + 1/P_j) + Pi_ij] grad_i W_ij
 //           du_i/dt = (gamma-1)^2 u_i / P_i sum_j m_j u_j v_ij . grad_i W_ij + visc.

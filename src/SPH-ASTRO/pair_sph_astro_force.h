@@ -37,7 +37,7 @@ using namespace SPHAstro;
    it gives is the same pair force along r_ij, and its heating 1/2 m_j Pi_ij v_ij . gradbar W
    keeps the true v_ij, so energy is conserved pair by pair as before. It acts only on pairs
    that approach both truly and reconstructed, so that heating is never negative.
-   HMEAN_PRESSURE_ENERGY (Hopkins 2013 eqs. 17-19, f_ij = 1): pressure term
+   HMEAN_PRESSURE_ENERGY (Hopkins 2013 eqs. 16-18, f_ij = 1): pressure term
    e_i e_j (1/P_i + 1/P_j), e = (gamma-1) u, and the P dV sum sum_j m_j e_j v_ij . grad W
    divided by e_i at the end, so that finish_thermal_rates' P_i/rho_i^2 x that sum is
    (gamma-1)^2 u_i/P_i sum_j m_j u_j v_ij . grad_i W_ij (rho_i = P_i/e_i).
