@@ -11,7 +11,10 @@
 // Adaptive global timestep (seed 000, "criteria for choosing the timestep"):
 //   dt_cv = C h / (c + h|div v| + 1.2 (alpha c + beta h |div v|)),  dt_f = C_f sqrt(h / |a|)
 // and, for the ideal gas, dt_u = C_u u / |du/dt| where du/dt < 0 (keeps u positive); with
-// physical heat conduction dt_k = C_k rho h^2 / kappa (sph_astro_conduction.h).
+// physical heat conduction dt_k = C_k rho h^2 / kappa (sph_astro_conduction.h), and with
+// artificial conductivity dt_a = C_a / sum_j k_ij, k_ij = m_j alpha_u v_sig |dW/dr|_ij / rho_ij
+// (its explicit diffusion rate; sph_astro_pair_terms.h: stable for C_a <= 1).
+// The conduction entry of the output vector is the smaller of dt_k and dt_a.
 // With pair sph/astro density continuity rho is integrated in the same way as u:
 //   rho^{n+1/2} = rho^n + dt/2 drho^n,  rho_est = rho^{n+1/2} + dt/2 drho^n  (forces at n+1)
 //   rho^{n+1} = rho^{n+1/2} + dt/2 drho^{n+1},  drho_i/dt = sum_j m_j v_ij . grad_i W_ij
@@ -84,6 +87,13 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg
       cond_factor_ = utils::numeric(FLERR, val, false, lmp);
       if (!(cond_factor_ > 0.0) || cond_factor_ > 1.0)
         error->all(FLERR, "fix sph/astro: conduction = {} must be in (0, 1]", val);
+    } else if (key == "conductivity") {
+      condu_factor_ = utils::numeric(FLERR, val, false, lmp);
+      if (!(condu_factor_ > 0.0) || condu_factor_ > 1.0)
+        error->all(FLERR,
+                   "fix sph/astro: conductivity = {} must be in (0, 1] (C in dt = C / the "
+                   "artificial conductivity's diffusion rate; 1 is the stability limit)",
+                   val);
     } else if (key == "xsph") {
       xsph_eps_ = utils::numeric(FLERR, val, false, lmp);
       if (!(xsph_eps_ >= 0.0) || xsph_eps_ > 1.0)
@@ -107,7 +117,7 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg
     } else
       error->all(FLERR,
                  "fix sph/astro: unknown keyword '{}'; allowed: thermal, courant, force, energy, "
-                 "conduction, xsph, dtmax, dtmin, tend, dt",
+                 "conduction, conductivity, xsph, dtmax, dtmin, tend, dt",
                  key);
     iarg += 2;
   }
@@ -445,6 +455,8 @@ void FixSPHAstro::next_timestep(bool from_end_of_step)
     const double *dudt = atom->dvector[state_.dudt];
     const bool energy_limit = evolve_u_ && energy_factor_ > 0.0;
     const double kappa = pair_->conduction_kappa();    // physical heat conduction, 0: off
+    // artificial conductivity: sum_j k_ij of the last force pass, else null
+    const double *condrate = static_cast<double *>(pair_->extract_peratom("condrate", ncol));
     const double *rho = atom->dvector[state_.rho];
 
     // minimum over particles of each criterion, with the rank of the limiting atom
@@ -497,6 +509,14 @@ void FixSPHAstro::next_timestep(bool from_end_of_step)
         const double dtk = conduction_timestep(cond_factor_, rho[i], h[i], kappa);
         if (dtk < mine[3].value) {
           mine[3].value = dtk;
+          limiting[3] = atom->tag[i];
+        }
+      }
+      // explicit artificial conductivity: dt_a = C_a / sum_j k_ij
+      if (condrate && condrate[i] > 0.0) {
+        const double dta = condu_factor_ / condrate[i];
+        if (dta < mine[3].value) {
+          mine[3].value = dta;
           limiting[3] = atom->tag[i];
         }
       }

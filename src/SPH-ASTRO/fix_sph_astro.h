@@ -59,9 +59,11 @@ class FixSPHAstro : public Fix {
   double force_factor_ = 0.3;     // C_f in dt = C_f sqrt(h / |a|)
   double energy_factor_ = 0.3;    // C_u in dt = C_u u / |du/dt| (where du/dt < 0)
   double cond_factor_ = 0.1;      // C_k in dt = C_k rho h^2 / kappa (pair conduction KAPPA)
-  double dtmax_ = 0.0;            // 0: no upper bound
-  double dtmin_ = 0.0;            // 0: no lower bound (a step below it is an error)
-  double tend_ = -1.0;            // < 0: no end time
+  // C_a in dt = C_a / sum_j k_ij, the rate of the artificial conductivity (pair conductivity)
+  double condu_factor_ = 0.5;
+  double dtmax_ = 0.0;    // 0: no upper bound
+  double dtmin_ = 0.0;    // 0: no lower bound (a step below it is an error)
+  double tend_ = -1.0;    // < 0: no end time
   bool adaptive_ = true;
   bool stopped_at_tend_ = false;
 

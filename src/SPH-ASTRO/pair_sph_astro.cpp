@@ -100,6 +100,7 @@ PairSPHAstro::~PairSPHAstro()
   memory->destroy(vsigmax_);
   memory->destroy(vgsum_);
   memory->destroy(vgrad_);
+  memory->destroy(condrate_);
   memory->destroy(pgeo_);
   memory->destroy(hprune_);
   memory->destroy(hcap_type_);
@@ -126,7 +127,7 @@ void PairSPHAstro::grow_work_arrays()
   // (re)allocate also when curl v or v_sig became needed after the arrays were made
   if (atom->nmax <= nmax_ && (!curl_on_ || curlv_) && (!signal_viscosity() || vsigmax_) &&
       (!(pressure_geometric_ || pressure_energy_) || pgeo_) && (!reconstruction() || vgrad_) &&
-      (!prune_on_ || hprune_))
+      (!prune_on_ || hprune_) && (!artificial_conductivity() || condrate_))
     return;
   nmax_ = MAX(nmax_, atom->nmax);
   if (prune_on_) memory->grow(hprune_, nmax_, "pair:sph/astro:hprune");    // kept until a build
@@ -153,6 +154,8 @@ void PairSPHAstro::grow_work_arrays()
     memory->create(vgsum_, nmax_, VGRAD_SUMS, "pair:sph/astro:vgsum");
     memory->create(vgrad_, nmax_, VGRAD_DATA, "pair:sph/astro:vgrad");
   }
+  memory->destroy(condrate_);
+  if (artificial_conductivity()) memory->create(condrate_, nmax_, "pair:sph/astro:condrate");
   memory->destroy(pgeo_);
   if (pressure_geometric_ || pressure_energy_) memory->create(pgeo_, nmax_, "pair:sph/astro:pgeo");
   memory->create(pressure_, nmax_, "pair:sph/astro:pressure");
@@ -1579,10 +1582,12 @@ int PairSPHAstro::pack_reverse_comm(int n, int first, double *buf)
   } else {
     const double *dudt = atom->dvector[state_.dudt];
     const bool vsig = signal_viscosity();
+    const bool cond = artificial_conductivity();
     for (int i = first; i < first + n; i++) {
       buf[m++] = dudt[i];
       buf[m++] = vdotgradw_[i];
       if (vsig) buf[m++] = vsigmax_[i];
+      if (cond) buf[m++] = condrate_[i];
     }
   }
   return m;
@@ -1619,6 +1624,7 @@ void PairSPHAstro::unpack_reverse_comm(int n, int *list, double *buf)
   } else {
     double *dudt = atom->dvector[state_.dudt];
     const bool vsig = signal_viscosity();
+    const bool cond = artificial_conductivity();
     for (int k = 0; k < n; k++) {
       const int j = list[k];
       dudt[j] += buf[m++];
@@ -1627,6 +1633,7 @@ void PairSPHAstro::unpack_reverse_comm(int n, int *list, double *buf)
         vsigmax_[j] = MAX(vsigmax_[j], buf[m]);
         m++;
       }
+      if (cond) condrate_[j] += buf[m++];
     }
   }
 }
@@ -1771,6 +1778,8 @@ void *PairSPHAstro::extract_peratom(const char *name, int &ncol)
   if (strcmp(name, "curlv") == 0) return (void *) (curl_on_ ? curlv_ : nullptr);
   if (strcmp(name, "vsigmax") == 0) return (void *) (signal_viscosity() ? vsigmax_ : nullptr);
   if (strcmp(name, "balsara") == 0) return (void *) (balsara_on_ ? balsara_ : nullptr);
+  if (strcmp(name, "condrate") == 0)
+    return (void *) (artificial_conductivity() ? condrate_ : nullptr);
   // reconstruction: symmetric grad v (xx, yy, zz, xy, xz, yz) and the spacing Delta per atom
   if (strcmp(name, "vgrad") == 0) {
     ncol = VGRAD_DATA;

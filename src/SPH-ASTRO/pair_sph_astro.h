@@ -58,6 +58,8 @@ class PairSPHAstro : public Pair {
   double alpha() const { return visc_alpha_; }
   double beta() const { return visc_beta_; }
   bool has_viscosity() const { return visc_on_; }
+  // artificial conductivity in force (alpha_u > 0 with an EOS that evolves u)
+  bool artificial_conductivity() const { return cond_alpha_ > 0.0 && eos_.uses_energy(); }
   // viscosity signal: Monaghan (1997) form; the Courant criterion then uses max_j v_sig,ij
   bool signal_viscosity() const { return visc_on_ && visc_signal_; }
   // viscosity on slope-limited reconstructed velocities (keyword reconstruct)
@@ -198,6 +200,9 @@ class PairSPHAstro : public Pair {
   double *vsigmax_ = nullptr;       // signal viscosity: max_j v_sig,ij over the kernel
   double **vgsum_ = nullptr;        // reconstruction: the sums M, G of grad v = G M^-1
   double **vgrad_ = nullptr;        // reconstruction: symmetric grad v and spacing Delta
+  // artificial conductivity: sum_j m_j alpha_u v_sig |dW/dr| / rho_ij, the rate of its
+  // explicit diffusion (fix sph/astro's timestep; sph_astro_pair_terms.h)
+  double *condrate_ = nullptr;
 
   bigint computed_step_ = -1;
   int computed_nlocal_ = -1;

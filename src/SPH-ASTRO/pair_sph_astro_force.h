@@ -86,6 +86,7 @@ void PairSPHAstro::force_pass()
     vdotgradw_[i] = 0.0;
     if (ENERGY) dudt[i] = 0.0;
     if (visc_signal(VISC)) vsigmax_[i] = 2.0 * soundspeed_[i];    // at least the pair with itself
+    if (COND) condrate_[i] = 0.0;
   }
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
@@ -103,7 +104,7 @@ void PairSPHAstro::force_pass()
                              : pressure_[i] / ((GH ? omega_[i] : 1.0) * rhoi * rhoi);
     const double ei = PE ? pgeo[i] : 0.0;
     const double ci = soundspeed_[i];
-    double fxi = 0.0, fyi = 0.0, fzi = 0.0, vgwi = 0.0, heati = 0.0, vsigi = 0.0;
+    double fxi = 0.0, fyi = 0.0, fzi = 0.0, vgwi = 0.0, heati = 0.0, vsigi = 0.0, condi = 0.0;
     const int *jlist = firstneigh[i];
     const int jnum = numneigh[i];
     for (int jj = 0; jj < jnum; jj++) {
@@ -176,12 +177,15 @@ void PairSPHAstro::force_pass()
       const double pdv = (ENERGY && GEO) ? prhoi * prhoj * vdotr * dwi : 0.0;
       if (ENERGY && GEO) heati += mj * pdv;
       if (ENERGY && VISC) heati += 0.5 * mj * visc * vdotr * dwbar;
-      double cond = 0.0;    // conductivity flux times the (mean) dW/dr
+      double cond = 0.0;     // conductivity flux times the (mean) dW/dr
+      double crate = 0.0;    // its coefficient times |dW/dr|: the diffusion rate of the pair
       if (COND) {
-        cond = conductivity_flux(alpha_u, uest[i], uest[j], pressure_[i], pressure_[j],
-                                 0.5 * (rhoi + rhoj)) *
+        crate =
+            -conductivity_coefficient(alpha_u, pressure_[i], pressure_[j], 0.5 * (rhoi + rhoj)) *
             dwbar * r;
+        cond = -crate * (uest[i] - uest[j]);
         heati += mj * cond;
+        condi += mj * crate;
       }
       if (newton_pair || j < nlocal) {
         f[j][0] -= dx * fpair;
@@ -190,7 +194,10 @@ void PairSPHAstro::force_pass()
         vdotgradw_[j] += continuity_rate(PE ? mi * ei : mi, vdotr, dwj);
         if (ENERGY && GEO) dudt[j] += mi * pdv;
         if (ENERGY && VISC) dudt[j] += 0.5 * mi * visc * vdotr * dwbar;
-        if (COND) dudt[j] -= mi * cond;
+        if (COND) {
+          dudt[j] -= mi * cond;
+          condrate_[j] += mi * crate;
+        }
       }
       if (evflag) ev_tally(i, j, nlocal, newton_pair, 0.0, 0.0, fpair, dx, dy, dz);
     }
@@ -200,6 +207,7 @@ void PairSPHAstro::force_pass()
     vdotgradw_[i] += vgwi;
     if (ENERGY) dudt[i] += heati;
     if (visc_signal(VISC)) vsigmax_[i] = MAX(vsigmax_[i], vsigi);
+    if (COND) condrate_[i] += condi;
   }
   if (newton_pair) {
     comm_stage_ = Stage::FORCE;
