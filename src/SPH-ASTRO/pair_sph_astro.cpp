@@ -27,8 +27,8 @@
 //                       du_i/dt = sum_j m_j sqrt(P_i P_j)/(rho_i rho_j) v_ij . grad_i W_ij + visc.
 //                       (seed 000 ibid.; the energy equation in the form of the force, as
 //                       seed 004 eqs. 41-42 pair with eqs. 23 and 26)
-// Keyword formulation pressure-energy (fixed h and dh/dt; Saitoh & Makino 2013, ApJ 768, 44,
-// "density-independent SPH"; Hopkins 2013, MNRAS 428, 2840, eqs. 16-18 with f_ij = 1):
+// Keyword formulation pressure-energy (Saitoh & Makino 2013, ApJ 768, 44, "density-independent
+// SPH"; Hopkins 2013, MNRAS 428, 2840, eqs. 16-18; f_ij = 1 with fixed h or dh/dt):
 //   pass 1  P_i = (gamma-1) sum_j m_j u_j W_ij,  rho_i = P_i / ((gamma-1) u_i)  (u_i > 0)
 //   pass 2  dv_i/dt = -sum_j m_j [(gamma-1)^2 u_i u_j (1/P_i + 1/P_j) + Pi_ij] grad_i W_ij
 //           du_i/dt = (gamma-1)^2 u_i / P_i sum_j m_j u_j v_ij . grad_i W_ij + visc.
@@ -36,6 +36,14 @@
 //   With uniform u these are the standard equations; across a contact in pressure balance P is
 //   smooth and rho jumps with u from one particle to the next (no pressure blip). Pair by pair
 //   the two P dV terms and the force's work cancel, so energy is conserved as before.
+//   With fix sph/astro/h iterate, h_i = hfact (m_i/rho^m_i)^(1/d) with the mass density
+//   rho^m_i = sum_j m_j W_ij(h_i) as without this keyword, and the kernels W(h_i), W(h_j):
+//     (gamma-1)^2 u_i u_j (1/P_i + 1/P_j) grad W -> e_i (e_j - C_i)/P_i grad_i W(h_i)
+//                                                 + e_j (e_i - C_j)/P_j grad_i W(h_j)
+//     du_i/dt = e_i/P_i sum_j m_j (e_j - C_i) v_ij . grad_i W_ij(h_i) + visc.,  e = (gamma-1) u
+//   C_i = h_i (dP_i/dh_i) / (d rho^m_i Omega_i) (0 at the h cap): from dP_i/dt with dh_i/dt
+//   = -h_i/(d rho^m_i Omega_i) drho^m_i/dt (Hopkins' f_ij with the mass-density h of this
+//   package: e_j f_ij = e_j - C_i); the work of the forces is again minus the P dV terms.
 // Keyword reconstruct: the viscosity (only) sees v_ij . r_ij of the velocities reconstructed
 // to the pair midpoint with the linearly exact grad v, a van Leer limiter, a noise trigger and
 // a smoothness gate (sph_astro_reconstruction.h); the energy equation keeps the true v_ij, so
@@ -79,8 +87,9 @@ PairSPHAstro::PairSPHAstro(LAMMPS *lmp) : Pair(lmp)
   one_coeff = 1;
   manybody_flag = 1;    // forces depend on densities of both partners
   finitecutflag = 1;    // per-atom cutoffs kernel_radius h_i for neighbor multi collections
-  // rho, P, c_s, vest[3]; h, Omega; alpha; u (cond.); Balsara f; symmetric grad v, Delta
-  comm_forward = 11 + SPHAstro::VGRAD_DATA;
+  // rho, P, c_s, vest[3]; h, Omega, C (pressure-energy); alpha; u (cond.); Balsara f;
+  // symmetric grad v, Delta
+  comm_forward = 12 + SPHAstro::VGRAD_DATA;
   // rho, nneigh | dudt, sum v.gradW, max v_sig | div and curl sums | grad v sums
   comm_reverse = SPHAstro::VGRAD_SUMS;
 }
@@ -101,6 +110,7 @@ PairSPHAstro::~PairSPHAstro()
   memory->destroy(vgsum_);
   memory->destroy(vgrad_);
   memory->destroy(condrate_);
+  memory->destroy(pe_gradh_);
   memory->destroy(pgeo_);
   memory->destroy(hprune_);
   memory->destroy(hcap_type_);
@@ -127,7 +137,8 @@ void PairSPHAstro::grow_work_arrays()
   // (re)allocate also when curl v or v_sig became needed after the arrays were made
   if (atom->nmax <= nmax_ && (!curl_on_ || curlv_) && (!signal_viscosity() || vsigmax_) &&
       (!(pressure_geometric_ || pressure_energy_) || pgeo_) && (!reconstruction() || vgrad_) &&
-      (!prune_on_ || hprune_) && (!artificial_conductivity() || condrate_))
+      (!prune_on_ || hprune_) && (!artificial_conductivity() || condrate_) &&
+      (!pressure_energy_ || pe_gradh_))
     return;
   nmax_ = MAX(nmax_, atom->nmax);
   if (prune_on_) memory->grow(hprune_, nmax_, "pair:sph/astro:hprune");    // kept until a build
@@ -156,6 +167,8 @@ void PairSPHAstro::grow_work_arrays()
   }
   memory->destroy(condrate_);
   if (artificial_conductivity()) memory->create(condrate_, nmax_, "pair:sph/astro:condrate");
+  memory->destroy(pe_gradh_);
+  if (pressure_energy_) memory->create(pe_gradh_, nmax_, "pair:sph/astro:pe_gradh");
   memory->destroy(pgeo_);
   if (pressure_geometric_ || pressure_energy_) memory->create(pgeo_, nmax_, "pair:sph/astro:pgeo");
   memory->create(pressure_, nmax_, "pair:sph/astro:pressure");
@@ -502,9 +515,6 @@ void PairSPHAstro::init_style()
       what = "eos ideal (the smoothed pressure is (gamma-1) sum_j m_j u_j W_ij)";
     else if (entropy_)
       what = "fix sph/astro thermal energy (it evolves u; thermal entropy is not supported)";
-    else if (hmode_ == HMode::GRADH)
-      what = "fixed h or fix sph/astro/h dhdt (its grad-h terms with fix sph/astro/h iterate "
-             "are not implemented)";
     else if (density_continuity_)
       what = "density summation (its density follows from the smoothed pressure)";
     else if (symmetrise_kernel_)
@@ -754,7 +764,7 @@ template <class KERNEL, int DIM, bool KM, bool PE> void PairSPHAstro::density_su
 // formulation pressure-energy: rho_i = (sum_j m_j u_j W_ij) / u_i, the density that makes the
 // ideal-gas pressure (gamma-1) rho_i u_i equal the smoothed one (Saitoh & Makino 2013, the
 // volume element m_i u_i / sum_j m_j u_j W_ij)
-void PairSPHAstro::pressure_energy_density()
+void PairSPHAstro::pressure_energy_density(const double *energy_sum)
 {
   const int nlocal = atom->nlocal;
   double *rho = atom->dvector[state_.rho];
@@ -765,7 +775,7 @@ void PairSPHAstro::pressure_energy_density()
                  "pair_style sph/astro formulation pressure-energy: atom {} has specific internal "
                  "energy u = {}; this formulation needs u > 0 (rho = P/((gamma-1) u))",
                  atom->tag[i], uest[i]);
-    rho[i] /= uest[i];
+    rho[i] = energy_sum[i] / uest[i];
   }
 }
 
@@ -831,7 +841,7 @@ void PairSPHAstro::count_neighbours()
    (sph_astro_reconstruction.h), from which div v and curl v follow as well.
 ------------------------------------------------------------------------- */
 
-template <class KERNEL, int DIM, int VSUMS> void PairSPHAstro::density_gradh()
+template <class KERNEL, int DIM, int VSUMS, bool PE> void PairSPHAstro::density_gradh()
 {
   constexpr bool CURL = VSUMS == VSUMS_CURL;
   constexpr bool GRADIENT = VSUMS == VSUMS_GRADIENT;
@@ -858,6 +868,8 @@ template <class KERNEL, int DIM, int VSUMS> void PairSPHAstro::density_gradh()
   const double R2 = K::radius * K::radius;
   const double w0 = K::w(0.0);
   const double hfact_d = std::pow(hfix_->hfact(), DIM);
+  const double *uest = PE ? atom->dvector[state_.uest] : nullptr;    // owned and ghost
+  const double gm1 = eos_.gamma - 1.0;
   const double tol = hfix_->tolerance();
   const int maxiter = hfix_->max_iterations();
 
@@ -877,6 +889,7 @@ template <class KERNEL, int DIM, int VSUMS> void PairSPHAstro::density_gradh()
     double hlo = 0.0, hhi = INFINITY;    // f(h) = rho(h) - rho_target(h) rises with h
     double h_evaluated = hi;             // rho, Omega and the count belong to this h
     double rhoi = 0.0, dsum = 0.0, ni = 0.0;
+    double esum = 0.0, desum = 0.0;    // PE: sum_j m_j u_j W and its d/dh at h_evaluated
     // CURL: sum_j m_j v_ij . grad_i W and sum_j m_j v_ij x grad_i W at h_evaluated
     double curl_sum[4] = {0.0, 0.0, 0.0, 0.0};
     double grad_sum[VGRAD_SUMS] = {};    // GRADIENT: M and G at h_evaluated
@@ -895,6 +908,8 @@ template <class KERNEL, int DIM, int VSUMS> void PairSPHAstro::density_gradh()
       const double norm = sigma * inv_h_pow_dim<DIM>(hinv);
       const double hR2 = R2 * hi * hi;
       double w_sum = mi * w0, dwh_sum = -mi * DIM * w0;    // self term
+      const double ei = PE ? mi * uest[i] : 0.0;
+      double we_sum = ei * w0, dweh_sum = -ei * DIM * w0;
       double vgrad[4] = {0.0, 0.0, 0.0, 0.0};    // the same sums over w'(q) / r, at this h
       double gsum[VGRAD_SUMS];
       if (GRADIENT)
@@ -912,6 +927,11 @@ template <class KERNEL, int DIM, int VSUMS> void PairSPHAstro::density_gradh()
         const double dw = K::dw(q);
         w_sum += mj * w;
         dwh_sum -= mj * (DIM * w + q * dw);
+        if (PE) {
+          const double ej = mj * uest[j];
+          we_sum += ej * w;
+          dweh_sum -= ej * (DIM * w + q * dw);
+        }
         ni += 1.0;
         if (CURL && r2 > 0.0) {
           const double dwr = mj * dw / r;
@@ -932,6 +952,10 @@ template <class KERNEL, int DIM, int VSUMS> void PairSPHAstro::density_gradh()
         for (int k = 0; k < VGRAD_SUMS; k++) grad_sum[k] = norm * hinv * gsum[k];
       rhoi = norm * w_sum;
       dsum = norm * hinv * dwh_sum;    // sum_j m_j dW/dh
+      if (PE) {
+        esum = norm * we_sum;
+        desum = norm * hinv * dweh_sum;
+      }
       h_evaluated = hi;
       const double rho_target = mi * hfact_d * inv_h_pow_dim<DIM>(hinv);
       const double f = rhoi - rho_target;
@@ -971,7 +995,15 @@ template <class KERNEL, int DIM, int VSUMS> void PairSPHAstro::density_gradh()
       for (int k = 0; k < VGRAD_SUMS; k++) vgsum_[i][k] = grad_sum[k];
     // h held at the cap does not follow rho: Omega = 1
     omega_[i] = at_cap ? 1.0 : 1.0 + hi / (DIM * rhoi) * dsum;
-    if (!(omega_[i] > 0.0)) omega_[i] = 1.0;
+    bool follows_rho = !at_cap;
+    if (!(omega_[i] > 0.0)) {
+      omega_[i] = 1.0;
+      follows_rho = false;
+    }
+    if (PE) {    // P_i / (gamma-1) and C_i = h_i dP_i/dh_i / (d rho^m_i Omega_i)
+      pgeo_[i] = esum;
+      pe_gradh_[i] = follows_rho ? gm1 * hi * desum / (DIM * rhoi * omega_[i]) : 0.0;
+    }
   }
   prune_atom_fallbacks_ += atom_fallbacks;
   hfix_->record(iter_sum, iter_max, inum, failures, capped);
@@ -979,7 +1011,7 @@ template <class KERNEL, int DIM, int VSUMS> void PairSPHAstro::density_gradh()
 
 int PairSPHAstro::pair_form() const
 {
-  if (hmode_ == HMode::GRADH) return GRADH;
+  if (hmode_ == HMode::GRADH) return pressure_energy_ ? GRADH_PRESSURE_ENERGY : GRADH;
   if (pressure_energy_) return HMEAN_PRESSURE_ENERGY;
   if (symmetrise_kernel_) return pressure_geometric_ ? KMEAN_GEOMETRIC : KMEAN;
   return pressure_geometric_ ? HMEAN_GEOMETRIC : HMEAN;
@@ -1005,20 +1037,31 @@ template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
     comm->forward_comm(this, 1);
   }
   counts_step_ = update->ntimestep;    // a density pass counts the neighbours
+  const bool gradh = form_gradh(form);
+  if (form_pressure_energy(form)) {    // the ghosts' u of this step
+    comm_stage_ = Stage::ENERGY;
+    comm->forward_comm(this, 1);
+  }
   // the velocity sums ride on the h iteration's last sum
   if (form == GRADH && reconstruction()) {
     forward_predicted_velocities();
-    density_gradh<KERNEL, DIM, VSUMS_GRADIENT>();
+    density_gradh<KERNEL, DIM, VSUMS_GRADIENT, false>();
   } else if (form == GRADH && curl_on_) {
     forward_predicted_velocities();
-    density_gradh<KERNEL, DIM, VSUMS_CURL>();
+    density_gradh<KERNEL, DIM, VSUMS_CURL, false>();
   } else if (form == GRADH)
-    density_gradh<KERNEL, DIM, VSUMS_NONE>();
+    density_gradh<KERNEL, DIM, VSUMS_NONE, false>();
+  else if (form == GRADH_PRESSURE_ENERGY && reconstruction()) {
+    forward_predicted_velocities();
+    density_gradh<KERNEL, DIM, VSUMS_GRADIENT, true>();
+  } else if (form == GRADH_PRESSURE_ENERGY && curl_on_) {
+    forward_predicted_velocities();
+    density_gradh<KERNEL, DIM, VSUMS_CURL, true>();
+  } else if (form == GRADH_PRESSURE_ENERGY)
+    density_gradh<KERNEL, DIM, VSUMS_NONE, true>();
   else if (form == HMEAN_PRESSURE_ENERGY) {
-    comm_stage_ = Stage::ENERGY;    // the ghosts' u of this step
-    comm->forward_comm(this, 1);
     density_sum<KERNEL, DIM, false, true>();
-    pressure_energy_density();
+    pressure_energy_density(atom->dvector[state_.rho]);
   } else if (!density_continuity_ || integrator_->density_needs_init()) {
     if (symmetrise_kernel_)
       density_sum<KERNEL, DIM, true, false>();
@@ -1034,20 +1077,26 @@ template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
     counts_step_ = -1;    // counted only if asked for (neighbour_counts)
   equation_of_state();
   if (reconstruction()) {    // grad v (and from it div v and curl v)
-    if (form != GRADH) {
+    if (!gradh) {
       if (symmetrise_kernel_)
         velocity_curl<KERNEL, DIM, KMEAN, VSUMS_GRADIENT>();
       else
         velocity_curl<KERNEL, DIM, HMEAN, VSUMS_GRADIENT>();
     }
-    velocity_gradient_finish<DIM>(form == GRADH);
+    velocity_gradient_finish<DIM>(gradh);
   } else if (curl_on_) {
-    if (form == GRADH)
+    if (gradh)
       velocity_curl_finish(true);    // sums from density_gradh
     else if (symmetrise_kernel_)
       velocity_curl<KERNEL, DIM, KMEAN, VSUMS_CURL>();
     else
       velocity_curl<KERNEL, DIM, HMEAN, VSUMS_CURL>();
+  }
+  // pressure-energy with grad-h terms: div v and curl v above are those of the mass density
+  // and Omega; now rho_i = P_i / ((gamma-1) u_i) and the EOS again (P = (gamma-1) rho u)
+  if (form == GRADH_PRESSURE_ENERGY) {
+    pressure_energy_density(pgeo_);
+    equation_of_state();
   }
   comm_stage_ = Stage::DENSITY;
   comm->forward_comm(this);
@@ -1063,6 +1112,9 @@ template <class KERNEL, int DIM> void PairSPHAstro::dispatch_physics()
   switch (form) {
     case GRADH:
       dispatch_force<KERNEL, DIM, GRADH>();
+      break;
+    case GRADH_PRESSURE_ENERGY:
+      dispatch_force<KERNEL, DIM, GRADH_PRESSURE_ENERGY>();
       break;
     case KMEAN:
       dispatch_force<KERNEL, DIM, KMEAN>();
@@ -1496,6 +1548,7 @@ int PairSPHAstro::pack_forward_comm(int n, int *list, double *buf, int /*pbc_fla
     if (gradh) {
       buf[m++] = h[j];
       buf[m++] = omega_[j];
+      if (pressure_energy_) buf[m++] = pe_gradh_[j];
     }
     if (alpha_atom_) buf[m++] = alpha_atom_[j];
     if (cond) buf[m++] = uest[j];
@@ -1543,6 +1596,7 @@ void PairSPHAstro::unpack_forward_comm(int n, int first, double *buf)
     if (gradh) {
       h[i] = buf[m++];
       omega_[i] = buf[m++];
+      if (pressure_energy_) pe_gradh_[i] = buf[m++];
     }
     if (alpha_atom_) alpha_atom_[i] = buf[m++];
     if (cond) uest[i] = buf[m++];

@@ -128,11 +128,15 @@ class PairSPHAstro : public Pair {
   bool density_continuity_ = false;
   bool symmetrise_kernel_ = false;
   bool pressure_geometric_ = false;
-  // formulation pressure-energy (fixed h and dh/dt; Saitoh & Makino 2013, ApJ 768, 44;
-  // Hopkins 2013, MNRAS 428, 2840): the pressure is summed, not the density,
+  // formulation pressure-energy (Saitoh & Makino 2013, ApJ 768, 44; Hopkins 2013, MNRAS 428,
+  // 2840): the pressure is summed, not the density,
   //   P_i = (gamma-1) sum_j m_j u_j W_ij,   rho_i = P_i / ((gamma-1) u_i),
-  // so that P is smooth across a contact discontinuity in pressure balance
+  // so that P is smooth across a contact discontinuity in pressure balance; with fix
+  // sph/astro/h iterate (h from the mass density) with the grad-h term C_i of pe_gradh_
   bool pressure_energy_ = false;
+  // pressure-energy with grad-h terms: C_i = h_i (dP_i/dh_i) / (d rho^m_i Omega_i) (owned +
+  // ghost), rho^m the mass density that sets h; Hopkins' f_ij (gamma-1) u_j = (gamma-1) u_j - C_i
+  double *pe_gradh_ = nullptr;
   SPHAstro::ContinuityIndex continuity_index_;
   bigint counts_step_ = -1;    // step whose force evaluation nneigh_ was counted in
   // pressure geometric: sqrt(P)/rho; pressure-energy: (gamma-1) u = P/rho (owned + ghost)
@@ -245,20 +249,24 @@ class PairSPHAstro : public Pair {
   // pair forms of the force pass (template parameter FORM): how W_ij is symmetrised and how
   // the pressure term is; grad-h terms come with their own kernels and the standard pressure
   enum PairForm {
-    HMEAN = 0,                   // W(r_ij, h_ij), P_i/rho_i^2 + P_j/rho_j^2
-    GRADH = 1,                   // W(h_i), W(h_j) with grad-h factors (fix sph/astro/h iterate)
-    KMEAN = 2,                   // (W(h_i) + W(h_j))/2, P_i/rho_i^2 + P_j/rho_j^2
-    HMEAN_GEOMETRIC = 3,         // W(r_ij, h_ij), 2 sqrt(P_i P_j)/(rho_i rho_j)
-    KMEAN_GEOMETRIC = 4,         // (W(h_i) + W(h_j))/2, 2 sqrt(P_i P_j)/(rho_i rho_j)
-    HMEAN_PRESSURE_ENERGY = 5    // W(r_ij, h_ij), (gamma-1)^2 u_i u_j (1/P_i + 1/P_j)
+    HMEAN = 0,                    // W(r_ij, h_ij), P_i/rho_i^2 + P_j/rho_j^2
+    GRADH = 1,                    // W(h_i), W(h_j) with grad-h factors (fix sph/astro/h iterate)
+    KMEAN = 2,                    // (W(h_i) + W(h_j))/2, P_i/rho_i^2 + P_j/rho_j^2
+    HMEAN_GEOMETRIC = 3,          // W(r_ij, h_ij), 2 sqrt(P_i P_j)/(rho_i rho_j)
+    KMEAN_GEOMETRIC = 4,          // (W(h_i) + W(h_j))/2, 2 sqrt(P_i P_j)/(rho_i rho_j)
+    HMEAN_PRESSURE_ENERGY = 5,    // W(r_ij, h_ij), (gamma-1)^2 u_i u_j (1/P_i + 1/P_j)
+    GRADH_PRESSURE_ENERGY = 6     // W(h_i), W(h_j), (gamma-1) u_i ((gamma-1) u_j - C_i) / P_i ...
   };
-  static constexpr bool form_gradh(int f) { return f == GRADH; }
+  static constexpr bool form_gradh(int f) { return f == GRADH || f == GRADH_PRESSURE_ENERGY; }
   static constexpr bool form_kmean(int f) { return f == KMEAN || f == KMEAN_GEOMETRIC; }
   static constexpr bool form_geometric(int f)
   {
     return f == HMEAN_GEOMETRIC || f == KMEAN_GEOMETRIC;
   }
-  static constexpr bool form_pressure_energy(int f) { return f == HMEAN_PRESSURE_ENERGY; }
+  static constexpr bool form_pressure_energy(int f)
+  {
+    return f == HMEAN_PRESSURE_ENERGY || f == GRADH_PRESSURE_ENERGY;
+  }
   int pair_form() const;
   // velocity sums taken with the density (GRADH) or in a pass of their own: none, the div and
   // curl sums (Balsara, switches), or the full gradient sums (reconstruction; div and curl
@@ -270,8 +278,10 @@ class PairSPHAstro : public Pair {
   void forward_predicted_velocities();
   // PE (pressure-energy): the same pass sums m_j u_j W_ij, then rho_i = that / u_i
   template <class KERNEL, int DIM, bool KM, bool PE> void density_sum();
-  void pressure_energy_density();
-  template <class KERNEL, int DIM, int VSUMS> void density_gradh();
+  void pressure_energy_density(const double *energy_sum);
+  // PE: also sum_j m_j u_j W_ij(h_i) into pgeo_ and the grad-h term C_i into pe_gradh_, at
+  // the h the iteration keeps
+  template <class KERNEL, int DIM, int VSUMS, bool PE> void density_gradh();
   void count_neighbours();
   template <class KERNEL, int DIM, int FORM, bool ENERGY, int VISC, bool COND> void force_pass();
   template <class KERNEL, int DIM, int FORM> void dispatch_force();

@@ -37,10 +37,12 @@ using namespace SPHAstro;
    it gives is the same pair force along r_ij, and its heating 1/2 m_j Pi_ij v_ij . gradbar W
    keeps the true v_ij, so energy is conserved pair by pair as before. It acts only on pairs
    that approach both truly and reconstructed, so that heating is never negative.
-   HMEAN_PRESSURE_ENERGY (Hopkins 2013 eqs. 16-18, f_ij = 1): pressure term
-   e_i e_j (1/P_i + 1/P_j), e = (gamma-1) u, and the P dV sum sum_j m_j e_j v_ij . grad W
-   divided by e_i at the end, so that finish_thermal_rates' P_i/rho_i^2 x that sum is
-   (gamma-1)^2 u_i/P_i sum_j m_j u_j v_ij . grad_i W_ij (rho_i = P_i/e_i).
+   Pressure-energy forms (Hopkins 2013 eqs. 16-18): pressure term
+   e_i (e_j - C_i)/P_i dW_i + e_j (e_i - C_j)/P_j dW_j, e = (gamma-1) u, C the grad-h term
+   (GRADH_PRESSURE_ENERGY; 0 for HMEAN_PRESSURE_ENERGY, where dW_i = dW_j = dW(h_ij)), and the
+   P dV sum sum_j m_j (e_j - C_i) v_ij . grad_i W divided by e_i at the end, so that
+   finish_thermal_rates' P_i/rho_i^2 x that sum (no Omega) is
+   e_i/P_i sum_j m_j (e_j - C_i) v_ij . grad_i W_ij (rho_i = P_i/e_i).
 ------------------------------------------------------------------------- */
 
 template <class KERNEL, int DIM, int FORM, bool ENERGY, int VISC, bool COND>
@@ -103,6 +105,7 @@ void PairSPHAstro::force_pass()
         : PE                 ? pgeo[i] / pressure_[i]
                              : pressure_[i] / ((GH ? omega_[i] : 1.0) * rhoi * rhoi);
     const double ei = PE ? pgeo[i] : 0.0;
+    const double ci_gradh = (PE && GH) ? pe_gradh_[i] : 0.0;    // C_i
     const double ci = soundspeed_[i];
     double fxi = 0.0, fyi = 0.0, fzi = 0.0, vgwi = 0.0, heati = 0.0, vsigi = 0.0, condi = 0.0;
     const int *jlist = firstneigh[i];
@@ -138,6 +141,7 @@ void PairSPHAstro::force_pass()
           : PE                 ? pgeo[j] / pressure_[j]
                                : pressure_[j] / ((GH ? omega_[j] : 1.0) * rhoj * rhoj);
       const double ej = PE ? pgeo[j] : 0.0;
+      const double cj_gradh = (PE && GH) ? pe_gradh_[j] : 0.0;    // C_j
       const double dvx = vxi - vest[j][0], dvy = vyi - vest[j][1], dvz = vzi - vest[j][2];
       const double vdotr = dvx * dx + dvy * dy + dvz * dz;
       double visc = 0.0;
@@ -165,14 +169,14 @@ void PairSPHAstro::force_pass()
                                    0.5 * (ci + soundspeed_[j]), 0.5 * (rhoi + rhoj), shear);
       }
       const double pterm = GEO ? pressure_geometric_term(prhoi, prhoj) * dwi
-          : PE                 ? ej * prhoi * dwi + ei * prhoj * dwj
+          : PE                 ? (ej - ci_gradh) * prhoi * dwi + (ei - cj_gradh) * prhoj * dwj
                                : prhoi * dwi + prhoj * dwj;
       const double fpair = -mi * mj * (pterm + visc * dwbar);
       fxi += dx * fpair;
       fyi += dy * fpair;
       fzi += dz * fpair;
       // drho_i/dt, -rho_i div v_i; PE: sum_j m_j e_j v_ij . grad W, divided by e_i below
-      vgwi += continuity_rate(PE ? mj * ej : mj, vdotr, dwi);
+      vgwi += continuity_rate(PE ? mj * (ej - ci_gradh) : mj, vdotr, dwi);
       // geometric forms: P dV work g_i g_j v_ij . grad W, the same for i and j
       const double pdv = (ENERGY && GEO) ? prhoi * prhoj * vdotr * dwi : 0.0;
       if (ENERGY && GEO) heati += mj * pdv;
@@ -191,7 +195,7 @@ void PairSPHAstro::force_pass()
         f[j][0] -= dx * fpair;
         f[j][1] -= dy * fpair;
         f[j][2] -= dz * fpair;
-        vdotgradw_[j] += continuity_rate(PE ? mi * ei : mi, vdotr, dwj);
+        vdotgradw_[j] += continuity_rate(PE ? mi * (ei - cj_gradh) : mi, vdotr, dwj);
         if (ENERGY && GEO) dudt[j] += mi * pdv;
         if (ENERGY && VISC) dudt[j] += 0.5 * mi * visc * vdotr * dwbar;
         if (COND) {
@@ -215,8 +219,10 @@ void PairSPHAstro::force_pass()
   }
   if (PE)
     for (int i = 0; i < nlocal; i++) vdotgradw_[i] /= pgeo[i];
-  for (int i = 0; i < nlocal; i++) divv_[i] = -vdotgradw_[i] / ((GH ? omega_[i] : 1.0) * rho[i]);
-  if (ENERGY) finish_thermal_rates(GH, GEO);
+  // (the pressure-energy grad-h terms are in C, not in Omega)
+  constexpr bool OMEGA = GH && !PE;
+  for (int i = 0; i < nlocal; i++) divv_[i] = -vdotgradw_[i] / ((OMEGA ? omega_[i] : 1.0) * rho[i]);
+  if (ENERGY) finish_thermal_rates(OMEGA, GEO);
 }
 
 template <class KERNEL, int DIM, int FORM> void PairSPHAstro::dispatch_force()
@@ -272,7 +278,11 @@ template <class KERNEL, int DIM, int FORM> void PairSPHAstro::dispatch_force()
   PREFIX template void                                                                       \
   PairSPHAstro::dispatch_force<SPHAstro::KT, 2, PairSPHAstro::HMEAN_PRESSURE_ENERGY>();      \
   PREFIX template void                                                                       \
-  PairSPHAstro::dispatch_force<SPHAstro::KT, 3, PairSPHAstro::HMEAN_PRESSURE_ENERGY>();
+  PairSPHAstro::dispatch_force<SPHAstro::KT, 3, PairSPHAstro::HMEAN_PRESSURE_ENERGY>();      \
+  PREFIX template void                                                                       \
+  PairSPHAstro::dispatch_force<SPHAstro::KT, 2, PairSPHAstro::GRADH_PRESSURE_ENERGY>();      \
+  PREFIX template void                                                                       \
+  PairSPHAstro::dispatch_force<SPHAstro::KT, 3, PairSPHAstro::GRADH_PRESSURE_ENERGY>();
 #define SPH_ASTRO_OPTION_FORMS(PREFIX)                \
   SPH_ASTRO_FORMS_OF_KERNEL(PREFIX, KernelCubic)      \
   SPH_ASTRO_FORMS_OF_KERNEL(PREFIX, KernelQuintic)    \
