@@ -113,6 +113,20 @@ inline double momentum_scale(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp)
   return sum;
 }
 
+// Newton's third law pair by pair: the total force on the local atoms vanishes to round-off
+// (relative to sum |f|, which must be > 0); single rank
+inline void expect_forces_sum_to_zero(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp)
+{
+  double fsum[3] = {0, 0, 0}, fabs_sum = 0;
+  for (int i = 0; i < lmp->atom->nlocal; i++)
+    for (int d = 0; d < 3; d++) {
+      fsum[d] += lmp->atom->f[i][d];
+      fabs_sum += std::fabs(lmp->atom->f[i][d]);
+    }
+  ASSERT_GT(fabs_sum, 0.0);
+  for (double fd : fsum) EXPECT_LT(std::fabs(fd), 1e-13 * fabs_sum);
+}
+
 // global vector of a compute, as last evaluated (thermo evaluates it on the
 // last step)
 inline std::vector<double> global_vector(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp,

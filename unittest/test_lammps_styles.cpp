@@ -32,14 +32,7 @@ TEST_P(Conservation, ForcesSumToZeroAndMomentumIsConserved)
   if (!GetParam().empty()) commands(lmp, {GetParam()});
   commands(lmp, {"velocity all zero linear", "velocity all zero angular", "run 0"});
   // Newton's third law pair by pair: the total force vanishes to round-off
-  double fsum[3] = {0, 0, 0}, fabs_sum = 0;
-  for (int i = 0; i < lmp->atom->nlocal; i++)
-    for (int d = 0; d < 3; d++) {
-      fsum[d] += lmp->atom->f[i][d];
-      fabs_sum += std::fabs(lmp->atom->f[i][d]);
-    }
-  ASSERT_GT(fabs_sum, 0.0);
-  for (double fd : fsum) EXPECT_LT(std::fabs(fd), 1e-13 * fabs_sum);
+  expect_forces_sum_to_zero(lmp);
 
   const auto start = global_vector(lmp, "sum", 12);
   commands(lmp, {"run 200"});

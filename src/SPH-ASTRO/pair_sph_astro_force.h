@@ -175,7 +175,7 @@ void PairSPHAstro::force_pass()
       fxi += dx * fpair;
       fyi += dy * fpair;
       fzi += dz * fpair;
-      // drho_i/dt, -rho_i div v_i; PE: sum_j m_j e_j v_ij . grad W, divided by e_i below
+      // drho_i/dt, -rho_i div v_i; PE: sum_j m_j (e_j - C_i) v_ij . grad W, / e_i below
       vgwi += continuity_rate(PE ? mj * (ej - ci_gradh) : mj, vdotr, dwi);
       // geometric forms: P dV work g_i g_j v_ij . grad W, the same for i and j
       const double pdv = (ENERGY && GEO) ? prhoi * prhoj * vdotr * dwi : 0.0;
