@@ -19,14 +19,18 @@ TEST(Viscosity, ClassicOnlyForApproachingPairs)
   EXPECT_GT(viscosity_classic(-0.5, 1.0, 1.0, 1.0, 2.0, 0.01, 1.3, 0.8), 0.0);
 }
 
-TEST(Conductivity, FluxRunsFromHotToColdAndIsAntisymmetric)
+TEST(Conductivity, CoefficientIsTheSignalOverTheMeanDensityForBothPartners)
 {
-  const double f = conductivity_flux(1.0, 2.0, 1.0, 1.0, 0.5, 1.0);
-  EXPECT_NEAR(f, std::sqrt(0.5) * 1.0, 1e-15);
-  EXPECT_DOUBLE_EQ(conductivity_flux(1.0, 1.0, 2.0, 0.5, 1.0, 1.0), -f);
+  // alpha_u sqrt(|P_i - P_j| / rho_ij) / rho_ij, the same seen from i and from j (so the flux
+  // coefficient x (u_i - u_j) runs from hot to cold and is antisymmetric)
+  const double k = conductivity_coefficient(1.5, 1.0, 0.5, 0.8);
+  EXPECT_NEAR(k, 1.5 * std::sqrt(0.5 / 0.8) / 0.8, 1e-15);
+  EXPECT_GT(k, 0.0);
+  EXPECT_DOUBLE_EQ(conductivity_coefficient(1.5, 0.5, 1.0, 0.8), k);
+  EXPECT_DOUBLE_EQ(conductivity_coefficient(3.0, 1.0, 0.5, 0.8), 2.0 * k);
   // no pressure difference: no signal, no flux (a contact in pressure balance
   // keeps its u jump only through the pressure noise it creates)
-  EXPECT_EQ(conductivity_flux(1.0, 2.0, 1.0, 0.7, 0.7, 1.0), 0.0);
+  EXPECT_EQ(conductivity_coefficient(1.0, 0.7, 0.7, 1.0), 0.0);
 }
 
 // Geometric-mean pressure term (seed 000): 2 sqrt(P_i P_j)/(rho_i rho_j) replaces

@@ -29,10 +29,11 @@ using namespace LAMMPS_NS;
 using namespace SPHAstro;
 
 // the ghosts' u_est travels with the density-stage forward communication when a term of the
-// force or conduction pass reads the partner's u
+// force or conduction pass reads the partner's u (with formulation pressure-energy it has
+// travelled already, before the pressure pass, and has not changed since)
 bool PairSPHAstro::ghosts_need_u() const
 {
-  return eos_.uses_energy() && (cond_alpha_ > 0.0 || cond_kappa_ > 0.0);
+  return eos_.uses_energy() && (cond_alpha_ > 0.0 || cond_kappa_ > 0.0) && !pressure_energy_;
 }
 
 template <class KERNEL, int DIM, bool GRADH> void PairSPHAstro::conduction_loop()

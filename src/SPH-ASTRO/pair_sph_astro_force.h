@@ -229,7 +229,7 @@ template <class KERNEL, int DIM, int FORM> void PairSPHAstro::dispatch_force()
 {
   // only the ideal gas evolves u, so only it has conductivity
   const bool energy = eos_.uses_energy();
-  const bool cond = energy && cond_alpha_ > 0.0;
+  const bool cond = artificial_conductivity();
   int visc = NO_VISCOSITY;
   if (visc_on_ && visc_signal_)
     visc = balsara_on_ ? SIGNAL_BALSARA : (recon_on_ ? SIGNAL_RECONSTRUCT : SIGNAL);

@@ -80,9 +80,9 @@ inline double balsara_factor(double divv, double curlv, double cs, double h)
 // Artificial conductivity (Price 2008, J. Comput. Phys. 227, 10040, eqs. 28 and 30):
 //   du_i/dt += sum_j m_j alpha_u v_sig (u_i - u_j) / rho_ij  (dW/dr)_ij
 //   v_sig = sqrt(|P_i - P_j| / rho_ij)
-// conductivity_flux returns alpha_u v_sig (u_i - u_j) / rho_ij; multiplied by m_j dW/dr for
-// i, by -m_i dW/dr for j, so that sum_i m_i du_i/dt is zero pair by pair.
-// conductivity_coefficient is alpha_u v_sig / rho_ij: du_i/dt = -sum_j k_ij (u_i - u_j) with
+// conductivity_coefficient is alpha_u v_sig / rho_ij, the same for i and j: the flux
+// coefficient x (u_i - u_j) is multiplied by m_j dW/dr for i and by -m_i dW/dr for j, so that
+// sum_i m_i du_i/dt is zero pair by pair; du_i/dt = -sum_j k_ij (u_i - u_j) with
 // k_ij = m_j coefficient |dW/dr|_ij >= 0, whose rate sum_j k_ij bounds the explicit step
 // (fix sph/astro: dt <= C / sum_j k_ij; Gershgorin: the largest eigenvalue of the diffusion
 // is at most 2 max_i sum_j k_ij, and the predictor-corrector u update is stable for
@@ -91,12 +91,6 @@ inline double conductivity_coefficient(double alpha_u, double Pi, double Pj, dou
 {
   const double vsig = std::sqrt(std::fabs(Pi - Pj) / rhobar);
   return alpha_u * vsig / rhobar;
-}
-
-inline double conductivity_flux(double alpha_u, double ui, double uj, double Pi, double Pj,
-                                double rhobar)
-{
-  return conductivity_coefficient(alpha_u, Pi, Pj, rhobar) * (ui - uj);
 }
 
 // Morris & Monaghan (1997) viscosity switch, one step of
