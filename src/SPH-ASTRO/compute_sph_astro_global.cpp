@@ -24,6 +24,7 @@
 #include "kspace.h"
 #include "modify.h"
 #include "pair_sph_astro.h"
+#include "sph_astro_eos.h"
 #include "update.h"
 
 #include <cmath>

@@ -1,14 +1,17 @@
 /* ----------------------------------------------------------------------
-   SPH-ASTRO: astrophysical smoothed particle hydrodynamics for LAMMPS
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
 ------------------------------------------------------------------------- */
 
-// Fix sph/astro: kick-drift-kick leapfrog of x, v and u (seed 001, "leapfrog/KDK") with the predicted v and u the pair style uses for the viscosity and
+// Fix sph/astro: kick-drift-kick leapfrog of x, v and u (Springel 2005, MNRAS 364, 1105) with the predicted v and u the pair style uses for the viscosity and
 // the equation of state at the end of the step:
 //   v^{n+1/2} = v^n + dt/2 a^n,  x^{n+1} = x^n + dt v^{n+1/2},  v_est = v^{n+1/2} + dt/2 a^n
 //   u^{n+1/2} = u^n + dt/2 du^n, u_est = u^{n+1/2} + dt/2 du^n
 //   (forces at n+1 from x^{n+1}, v_est, u_est)
 //   v^{n+1} = v^{n+1/2} + dt/2 a^{n+1},  u^{n+1} = u^{n+1/2} + dt/2 du^{n+1}
-// Adaptive global timestep (seed 000, "criteria for choosing the timestep"):
+// Adaptive global timestep (after Monaghan 1992, ARA&A 30, 543, sec. 10.3; sph_astro_timestep.h):
 //   dt_cv = C h / (c + h|div v| + 1.2 (alpha c + beta h |div v|)),  dt_f = C_f sqrt(h / |a|)
 // and, for the ideal gas, dt_u = C_u u / |du/dt| where du/dt < 0 (keeps u positive); with
 // physical heat conduction dt_k = C_k rho h^2 / kappa (sph_astro_conduction.h), and with
@@ -18,14 +21,16 @@
 // With pair sph/astro density continuity rho is integrated in the same way as u:
 //   rho^{n+1/2} = rho^n + dt/2 drho^n,  rho_est = rho^{n+1/2} + dt/2 drho^n  (forces at n+1)
 //   rho^{n+1} = rho^{n+1/2} + dt/2 drho^{n+1},  drho_i/dt = sum_j m_j v_ij . grad_i W_ij
-// (seed 004 eq. 33), starting from one density summation at the first force evaluation.
+// (Monaghan 1992, eq. 2.12), starting from one density summation at the first force evaluation.
 
 #include "fix_sph_astro.h"
 
 #include "fix_sph_astro_h.h"
+#include "pair_sph_astro.h"
 
 #include "atom.h"
 #include "comm.h"
+#include "domain.h"
 #include "error.h"
 #include "force.h"
 #include "memory.h"
@@ -34,8 +39,11 @@
 #include "neigh_request.h"
 #include "neighbor.h"
 #include "output.h"
-#include "pair_sph_astro.h"
 #include "sph_astro_conduction.h"
+#include "sph_astro_options.h"
+#include "sph_astro_passes.h"
+#include "sph_astro_state.h"
+#include "sph_astro_timestep.h"
 #include "timer.h"
 #include "update.h"
 #include "utils.h"
@@ -48,7 +56,9 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 using namespace SPHAstro;
 
-FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
+FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), state_(new StateIndex()), entropy_index_(new EntropyIndex()),
+    continuity_index_(new ContinuityIndex())
 {
   time_integrate = 1;
   restart_global = 1;
@@ -140,6 +150,17 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg
 FixSPHAstro::~FixSPHAstro()
 {
   memory->destroy(xsph_);
+  delete state_;
+  delete entropy_index_;
+  delete continuity_index_;
+}
+
+void *FixSPHAstro::extract(const char *name, int &dim)
+{
+  dim = 0;
+  entropy_flag_ = entropy_ ? 1 : 0;
+  if (strcmp(name, "entropy") == 0) return &entropy_flag_;
+  return nullptr;
 }
 
 int FixSPHAstro::setmask()
@@ -173,7 +194,7 @@ void FixSPHAstro::init()
                "fix sph/astro: units {} mix energy and force units (ftm2v = {}); use units lj, "
                "si, cgs, micro or nano",
                update->unit_style, force->ftm2v);
-  if (!find_state(lmp, state_))
+  if (!find_state(lmp, *state_))
     error->all(FLERR, "fix sph/astro: the per-particle state fix {} is missing", STATE_FIX_ID);
   evolve_u_ = pair_->eos().uses_energy();
   if (entropy_) {
@@ -181,13 +202,13 @@ void FixSPHAstro::init()
       error->all(FLERR,
                  "fix sph/astro thermal entropy needs pair_style sph/astro eos ideal (P = A "
                  "rho^gamma)");
-    if (!find_entropy_state(lmp, entropy_index_))
+    if (!find_entropy_state(lmp, *entropy_index_))
       error->all(FLERR, "fix sph/astro: the entropy state fix {} is missing", ENTROPY_FIX_ID);
   }
   auto hfixes = modify->get_fix_by_style("^sph/astro/h$");
   hfix_ = hfixes.empty() ? nullptr : dynamic_cast<FixSPHAstroH *>(hfixes.front());
   continuity_ = pair_->density_continuity();
-  if (continuity_ && !find_continuity_state(lmp, continuity_index_))
+  if (continuity_ && !find_continuity_state(lmp, *continuity_index_))
     error->all(FLERR,
                "fix sph/astro: pair_style sph/astro density continuity needs the per-atom state "
                "fix {}; it is missing (define pair_style and fix sph/astro again)",
@@ -203,12 +224,14 @@ void FixSPHAstro::init()
   // anew
   const bool unchanged = hash_velocity_energy() == state_hash_;
   if (!unchanged) entropy_needs_init_ = true;    // A follows from the new u at the next density
+  pair_->schedule_initialisation(entropy_ && entropy_needs_init_,
+                                 continuity_ && density_needs_init_);
   if (predicted_step_ != update->ntimestep || !unchanged) {
     const int nlocal = atom->nlocal;
     double **v = atom->v;
-    double **vest = atom->darray[state_.vest];
-    const double *u = atom->dvector[state_.u];
-    double *uest = atom->dvector[state_.uest];
+    double **vest = atom->darray[state_->vest];
+    const double *u = atom->dvector[state_->u];
+    double *uest = atom->dvector[state_->uest];
     for (int i = 0; i < nlocal; i++) {
       vest[i][0] = v[i][0];
       vest[i][1] = v[i][1];
@@ -216,8 +239,8 @@ void FixSPHAstro::init()
       uest[i] = u[i];
     }
     if (continuity_) {
-      const double *rho = atom->dvector[state_.rho];
-      double *rhoest = atom->dvector[continuity_index_.rhoest];
+      const double *rho = atom->dvector[state_->rho];
+      double *rhoest = atom->dvector[continuity_index_->rhoest];
       for (int i = 0; i < nlocal; i++) rhoest[i] = rho[i];
     }
   }
@@ -225,6 +248,8 @@ void FixSPHAstro::init()
 
 void FixSPHAstro::setup(int /*vflag*/)
 {
+  // the setup's force evaluation has initialised A and rho (pair sph/astro was told at init)
+  entropy_needs_init_ = density_needs_init_ = false;
   stopped_at_tend_ = false;
   user_dt_ = update->dt;
   if (tend_ > 0.0 && current_time() >= tend_ * (1.0 - 1e-12)) {
@@ -263,18 +288,18 @@ void FixSPHAstro::initial_integrate(int /*vflag*/)
   const int *type = atom->type;
   const double *rmass = atom->rmass;
   const double *mass = atom->mass;
-  double **vest = atom->darray[state_.vest];
-  double *u = atom->dvector[state_.u];
-  double *uest = atom->dvector[state_.uest];
-  const double *dudt = atom->dvector[state_.dudt];
-  double *A = entropy_ ? atom->dvector[entropy_index_.A] : nullptr;
-  double *Aest = entropy_ ? atom->dvector[entropy_index_.Aest] : nullptr;
-  const double *dAdt = entropy_ ? atom->dvector[entropy_index_.dAdt] : nullptr;
+  double **vest = atom->darray[state_->vest];
+  double *u = atom->dvector[state_->u];
+  double *uest = atom->dvector[state_->uest];
+  const double *dudt = atom->dvector[state_->dudt];
+  double *A = entropy_ ? atom->dvector[entropy_index_->A] : nullptr;
+  double *Aest = entropy_ ? atom->dvector[entropy_index_->Aest] : nullptr;
+  const double *dAdt = entropy_ ? atom->dvector[entropy_index_->dAdt] : nullptr;
   const int nlocal = atom->nlocal;
   double **dv_xsph = xsph_eps_ > 0.0 ? xsph_ : nullptr;    // drift velocity correction
-  double *rho = continuity_ ? atom->dvector[state_.rho] : nullptr;
-  double *rhoest = continuity_ ? atom->dvector[continuity_index_.rhoest] : nullptr;
-  const double *drhodt = continuity_ ? atom->dvector[continuity_index_.drhodt] : nullptr;
+  double *rho = continuity_ ? atom->dvector[state_->rho] : nullptr;
+  double *rhoest = continuity_ ? atom->dvector[continuity_index_->rhoest] : nullptr;
+  const double *drhodt = continuity_ ? atom->dvector[continuity_index_->drhodt] : nullptr;
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) {
@@ -301,7 +326,7 @@ void FixSPHAstro::initial_integrate(int /*vflag*/)
       uest[i] = u[i] + dtf * dudt[i];
     } else
       uest[i] = u[i];
-    if (rho) {    // density continuity: rho like u (seed 004 eq. 33)
+    if (rho) {    // density continuity: rho like u (Monaghan 1992, eq. 2.12)
       rho[i] += dtf * drhodt[i];
       rhoest[i] = rho[i] + dtf * drhodt[i];
     }
@@ -318,13 +343,13 @@ void FixSPHAstro::final_integrate()
   const int *type = atom->type;
   const double *rmass = atom->rmass;
   const double *mass = atom->mass;
-  double *u = atom->dvector[state_.u];
-  const double *dudt = atom->dvector[state_.dudt];
+  double *u = atom->dvector[state_->u];
+  const double *dudt = atom->dvector[state_->dudt];
   const int nlocal = atom->nlocal;
-  double *A = entropy_ ? atom->dvector[entropy_index_.A] : nullptr;
-  const double *dAdt = entropy_ ? atom->dvector[entropy_index_.dAdt] : nullptr;
-  double *rho = atom->dvector[state_.rho];
-  const double *drhodt = continuity_ ? atom->dvector[continuity_index_.drhodt] : nullptr;
+  double *A = entropy_ ? atom->dvector[entropy_index_->A] : nullptr;
+  const double *dAdt = entropy_ ? atom->dvector[entropy_index_->dAdt] : nullptr;
+  double *rho = atom->dvector[state_->rho];
+  const double *drhodt = continuity_ ? atom->dvector[continuity_index_->drhodt] : nullptr;
   const double gamma = pair_->eos().gamma;
 
   for (int i = 0; i < nlocal; i++) {
@@ -342,7 +367,7 @@ void FixSPHAstro::final_integrate()
                    atom->tag[i], rho[i], drhodt[i], update->ntimestep);
     }
     if (entropy_) {
-      // A and, from it, u = A rho^(gamma-1) / (gamma-1) at the end of the step (seed 000)
+      // A and, from it, u = A rho^(gamma-1) / (gamma-1) at the end of the step (Springel & Hernquist 2002)
       A[i] += dtf * dAdt[i];
       if (!(A[i] >= 0.0) || !std::isfinite(A[i]))
         error->one(FLERR,
@@ -396,8 +421,8 @@ uint64_t FixSPHAstro::hash_velocity_energy() const
     memcpy(&b, &value, sizeof(b));
     return b;
   };
-  const double *u = atom->dvector[state_.u];
-  const double *rho = pair_has_continuity() ? atom->dvector[state_.rho] : nullptr;
+  const double *u = atom->dvector[state_->u];
+  const double *rho = pair_has_continuity() ? atom->dvector[state_->rho] : nullptr;
   double **v = atom->v;
   uint64_t local = 0;
   for (int i = 0; i < atom->nlocal; i++) {
@@ -435,31 +460,22 @@ void FixSPHAstro::next_timestep(bool from_end_of_step)
 {
   double dt = update->dt;
   if (adaptive_) {
-    int ncol;
-    const double *cs = static_cast<double *>(pair_->extract_peratom("soundspeed", ncol));
-    const double *divv = static_cast<double *>(pair_->extract_peratom("divv", ncol));
-    // signal-velocity viscosity: max_j v_sig,ij of the last force pass, else null
-    const double *vsigmax = static_cast<double *>(pair_->extract_peratom("vsigmax", ncol));
-    const double *h = atom->dvector[state_.h];
+    const double *h = atom->dvector[state_->h];
     double **f = atom->f;
     const int *mask = atom->mask;
     const int *type = atom->type;
     const double *rmass = atom->rmass;
     const double *mass = atom->mass;
     const int nlocal = atom->nlocal;
-    const double alpha = pair_->alpha(), beta = pair_->beta();
-    const double *alpha_atom = pair_->alpha_per_atom();    // viscosity switch, or null
-    const double beta_factor = pair_->beta_factor();
-
-    const double *u = atom->dvector[state_.u];
-    const double *dudt = atom->dvector[state_.dudt];
+    const double *u = atom->dvector[state_->u];
+    const double *dudt = atom->dvector[state_->dudt];
     const bool energy_limit = evolve_u_ && energy_factor_ > 0.0;
-    const double kappa = pair_->conduction_kappa();    // physical heat conduction, 0: off
-    // artificial conductivity: sum_j k_ij of the last force pass, else null
-    const double *condrate = static_cast<double *>(pair_->extract_peratom("condrate", ncol));
-    const double *rho = atom->dvector[state_.rho];
+    const double kappa = pair_->options().conduction;    // physical heat conduction, 0: off
+    const bool conductivity = pair_->options().artificial_conductivity();
+    const double *rho = atom->dvector[state_->rho];
 
-    // minimum over particles of each criterion, with the rank of the limiting atom
+    // minimum over particles of each criterion (sph_astro_timestep.h), with the rank of the
+    // limiting atom: Courant, force, energy, conduction (physical and artificial)
     struct {
       double value;
       int rank;
@@ -469,57 +485,21 @@ void FixSPHAstro::next_timestep(bool from_end_of_step)
                  {INFINITY, comm->me}},
       all[4];
     tagint limiting[4] = {0, 0, 0, 0};
+    auto consider = [&](int k, double dtk, int i) {
+      if (dtk < mine[k].value) {
+        mine[k].value = dtk;
+        limiting[k] = atom->tag[i];
+      }
+    };
     for (int i = 0; i < nlocal; i++) {
       if (!(mask[i] & groupbit)) continue;
-      double vsig;
-      if (vsigmax)    // Monaghan 1997; Springel 2005 eq. 16: dt = C h_i / max_j v_sig,ij
-        vsig = vsigmax[i];
-      else {
-        const double hdiv = h[i] * std::fabs(divv[i]);
-        const double ai = alpha_atom ? alpha_atom[i] : alpha;
-        const double bi = alpha_atom ? beta_factor * ai : beta;
-        vsig = cs[i] + hdiv + 1.2 * (ai * cs[i] + bi * hdiv);
-      }
-      if (vsig > 0.0) {
-        const double dtcv = courant_ * h[i] / vsig;
-        if (dtcv < mine[0].value) {
-          mine[0].value = dtcv;
-          limiting[0] = atom->tag[i];
-        }
-      }
+      consider(0, dt_courant(courant_, h[i], pair_->courant_signal_speed(i)), i);
       const double m = rmass ? rmass[i] : mass[type[i]];
       const double a = std::sqrt(f[i][0] * f[i][0] + f[i][1] * f[i][1] + f[i][2] * f[i][2]) / m;
-      if (a > 0.0) {
-        const double dtf = force_factor_ * std::sqrt(h[i] / a);
-        if (dtf < mine[1].value) {
-          mine[1].value = dtf;
-          limiting[1] = atom->tag[i];
-        }
-      }
-      // a falling u must not overshoot zero: dt_u = C_u u / |du/dt| where du/dt < 0
-      if (energy_limit && dudt[i] < 0.0) {
-        const double dtu = energy_factor_ * u[i] / -dudt[i];
-        if (dtu < mine[2].value) {
-          mine[2].value = dtu;
-          limiting[2] = atom->tag[i];
-        }
-      }
-      // explicit heat conduction: dt_k = C_k rho h^2 / kappa (sph_astro_conduction.h)
-      if (kappa > 0.0) {
-        const double dtk = conduction_timestep(cond_factor_, rho[i], h[i], kappa);
-        if (dtk < mine[3].value) {
-          mine[3].value = dtk;
-          limiting[3] = atom->tag[i];
-        }
-      }
-      // explicit artificial conductivity: dt_a = C_a / sum_j k_ij
-      if (condrate && condrate[i] > 0.0) {
-        const double dta = condu_factor_ / condrate[i];
-        if (dta < mine[3].value) {
-          mine[3].value = dta;
-          limiting[3] = atom->tag[i];
-        }
-      }
+      consider(1, dt_force(force_factor_, h[i], a), i);
+      if (energy_limit) consider(2, dt_energy(energy_factor_, u[i], dudt[i]), i);
+      if (kappa > 0.0) consider(3, conduction_timestep(cond_factor_, rho[i], h[i], kappa), i);
+      if (conductivity) consider(3, dt_conductivity(condu_factor_, pair_->conductivity_rate(i)), i);
     }
     MPI_Allreduce(mine, all, 4, MPI_DOUBLE_INT, MPI_MINLOC, world);
     last_dt_cv_ = all[0].value;
@@ -625,4 +605,46 @@ void FixSPHAstro::restart(char *buf)
     for (int c = 0; c < len; c++) id += static_cast<char>(list[n++]);
     reference_energy_[id] = list[n++];
   }
+}
+
+/* ----------------------------------------------------------------------
+   XSPH (keyword xsph EPS; Monaghan 1989, J. Comput. Phys. 82, 1; Monaghan 1992, eq. 4.1):
+   particles drift with the smoothed velocity
+     dx_i/dt = v_i + dv_i,  dv_i = eps sum_j m_j / rho_ij (v_j - v_i) W(r_ij, h_ij)
+   rho_ij = (rho_i + rho_j)/2, h_ij = (h_i + h_j)/2. W_ij is symmetric and v_j - v_i
+   antisymmetric, so sum_i m_i dv_i = 0 pair by pair. The velocities are the predicted ones of
+   the last force evaluation (ghosts have them from pair sph/astro's communication). v itself
+   is unchanged; since x no longer moves with v, the total energy is conserved only
+   approximately (doc/fix_sph_astro.rst). Computed after every force evaluation (post_force,
+   and setup for the first drift) over a full list requested only when xsph > 0.
+------------------------------------------------------------------------- */
+
+void FixSPHAstro::init_list(int /*id*/, NeighList *ptr)
+{
+  xsph_list_ = ptr;
+}
+
+void FixSPHAstro::post_force(int /*vflag*/)
+{
+  xsph_correction();
+}
+
+void FixSPHAstro::xsph_correction()
+{
+  if (atom->nmax > xsph_nmax_) {
+    xsph_nmax_ = atom->nmax;
+    memory->destroy(xsph_);
+    memory->create(xsph_, xsph_nmax_, 3, "fix_sph_astro:xsph");
+    array_atom = xsph_;
+  }
+  // atoms outside the list (none for a list of all atoms) keep a zero correction
+  for (int i = 0; i < atom->nlocal; i++) xsph_[i][0] = xsph_[i][1] = xsph_[i][2] = 0.0;
+  PassContext ctx{};
+  ctx.kernel = pair_->kernel_type();
+  ctx.dim = domain->dimension;
+  ctx.p = {atom->x,      atom->dvector[state_->h], atom->type, atom->rmass, atom->mass,
+           atom->nlocal, atom->nlocal + atom->nghost};
+  ctx.rho = pair_->eval_density();    // that of the force evaluation (ghosts too)
+  ctx.vest = atom->darray[state_->vest];
+  xsph_pass(ctx, view_of(xsph_list_), xsph_eps_, xsph_);
 }

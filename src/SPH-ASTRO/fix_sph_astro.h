@@ -1,5 +1,8 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   SPH-ASTRO: astrophysical smoothed particle hydrodynamics for LAMMPS
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -12,11 +15,16 @@ FixStyle(sph/astro,FixSPHAstro);
 #define LMP_FIX_SPH_ASTRO_H
 
 #include "fix.h"
-#include "sph_astro_state.h"
 
 #include <cstdint>
 #include <map>
 #include <string>
+
+namespace SPHAstro {
+struct StateIndex;
+struct EntropyIndex;
+struct ContinuityIndex;
+}    // namespace SPHAstro
 
 namespace LAMMPS_NS {
 
@@ -40,15 +48,8 @@ class FixSPHAstro : public Fix {
   void write_restart(FILE *) override;
   void restart(char *) override;
 
-  // thermal variable: specific energy u, or entropic function A (P = A rho^gamma)
-  bool entropy() const { return entropy_; }
-  // entropy formulation: A must be (re)derived from u and rho at the next density pass
-  bool entropy_needs_init() const { return entropy_needs_init_; }
-  void entropy_initialised() { entropy_needs_init_ = false; }
-  // pair sph/astro density continuity: rho still needs its one summation (the first force
-  // evaluation after this fix was defined; not after read_restart)
-  bool density_needs_init() const { return density_needs_init_; }
-  void density_initialised() { density_needs_init_ = false; }
+  // "entropy": 1 when the thermal variable is the entropic function A (P = A rho^gamma)
+  void *extract(const char *, int &) override;
 
   // reference total energy of a compute sph/astro/global (by compute ID): set at its first
   // evaluation, kept across restarts
@@ -67,17 +68,20 @@ class FixSPHAstro : public Fix {
   bool adaptive_ = true;
   bool stopped_at_tend_ = false;
 
-  SPHAstro::StateIndex state_;
+  SPHAstro::StateIndex *state_;
   class PairSPHAstro *pair_ = nullptr;
   class FixSPHAstroH *hfix_ = nullptr;    // variable h: advanced in the drift
   bool evolve_u_ = true;
   bool entropy_ = false;
+  int entropy_flag_ = 0;    // extract("entropy")
+  // A from u (entropy), rho from one summation (density continuity) at the next force
+  // evaluation: pair sph/astro is told at init, and has done it by setup
   bool entropy_needs_init_ = true;
-  SPHAstro::EntropyIndex entropy_index_;
+  SPHAstro::EntropyIndex *entropy_index_;
   // pair sph/astro density continuity: rho is integrated like u, with the prediction d_rhoest
   bool continuity_ = false;
   bool density_needs_init_ = true;
-  SPHAstro::ContinuityIndex continuity_index_;
+  SPHAstro::ContinuityIndex *continuity_index_;
   bool pair_has_continuity() const;
 
   // restart state
@@ -88,14 +92,13 @@ class FixSPHAstro : public Fix {
   bool dt_pending_ = false;    // first dt of a run: set once all setup forces are in
   double user_dt_ = 0.0;       // with dt fixed: the step to restore after a tend clip
 
-  // XSPH (fix_sph_astro_xsph.cpp): positions drift with v + eps sum_j m_j / rho_ij (v_j - v_i)
-  // W_ij; the correction is computed after each force evaluation over a full neighbour list
+  // XSPH: positions drift with v + eps sum_j m_j / rho_ij (v_j - v_i) W_ij; the correction is
+  // computed after each force evaluation over a full neighbour list
   double xsph_eps_ = 0.0;      // 0: off (no list, no pass)
   double **xsph_ = nullptr;    // per-atom correction (owned atoms), also the fix's per-atom output
   int xsph_nmax_ = 0;
   class NeighList *xsph_list_ = nullptr;
   void xsph_correction();
-  template <class KERNEL, int DIM> void xsph_loop();
 
   double last_dt_cv_ = 0.0, last_dt_force_ = 0.0, last_dt_energy_ = 0.0, last_dt_cond_ = 0.0;
   tagint last_limiting_atom_ = 0;

@@ -1,13 +1,18 @@
 /* ----------------------------------------------------------------------
-   SPH-ASTRO: variable smoothing length
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
 ------------------------------------------------------------------------- */
+
+// Variable smoothing length
 
 // fix ID group sph/astro/h dhdt [margin M] [rebuild F] [collections auto|N|no]
 // fix ID group sph/astro/h iterate [hfact F] [tol T] [maxiter N] [margin M] [rebuild F]
 //                                   [collections auto|N|no]
 //
 // In both modes h is advanced with the drift of fix sph/astro, h <- h exp(dt div v / d), the
-// integral of dh/dt = (h/d) div v at fixed div v (seed 000 eq. 1). In dhdt mode that is the
+// integral of dh/dt = (h/d) div v at fixed div v (Benz 1990; Monaghan 1992). In dhdt mode that is the
 // evolution; in iterate mode it is the starting guess of the Newton-Raphson iteration that
 // pair sph/astro runs in its density pass. Smoothing lengths are capped at margin x the
 // largest h of their type when the run began (the neighbour list cutoffs are set for it).
@@ -51,6 +56,8 @@
 #include "neigh_request.h"
 #include "neighbor.h"
 #include "pair_sph_astro.h"
+#include "sph_astro_passes.h"
+#include "sph_astro_state.h"
 #include "timer.h"
 #include "update.h"
 #include "utils.h"
@@ -62,7 +69,8 @@
 using namespace LAMMPS_NS;
 using namespace FixConst;
 
-FixSPHAstroH::FixSPHAstroH(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
+FixSPHAstroH::FixSPHAstroH(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), state_(new SPHAstro::StateIndex())
 {
   vector_flag = 1;
   size_vector = 9;
@@ -129,6 +137,24 @@ FixSPHAstroH::FixSPHAstroH(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, a
   next_reneighbor = -1;
 }
 
+FixSPHAstroH::~FixSPHAstroH()
+{
+  delete state_;
+}
+
+void *FixSPHAstroH::extract(const char *name, int &dim)
+{
+  dim = 1;
+  if (strcmp(name, "hfact") == 0) return &hfact_;
+  if (strcmp(name, "tolerance") == 0) return &tolerance_;
+  if (strcmp(name, "margin") == 0) return &margin_;
+  dim = 0;
+  iterate_flag_ = mode_ == Mode::ITERATE ? 1 : 0;
+  if (strcmp(name, "iterate") == 0) return &iterate_flag_;
+  if (strcmp(name, "maxiter") == 0) return &max_iterations_;
+  return nullptr;
+}
+
 int FixSPHAstroH::setmask()
 {
   // fix sph/astro calls advance_h() in its drift; end_of_step checks h against the caps,
@@ -140,7 +166,7 @@ void FixSPHAstroH::init()
 {
   pair_ = dynamic_cast<PairSPHAstro *>(force->pair_match("^sph/astro$", 0, 0));
   if (!pair_) error->all(FLERR, "fix sph/astro/h requires pair_style sph/astro");
-  if (!SPHAstro::find_state(lmp, state_) || modify->get_fix_by_style("^sph/astro$").empty())
+  if (!SPHAstro::find_state(lmp, *state_) || modify->get_fix_by_style("^sph/astro$").empty())
     error->all(FLERR, "fix sph/astro/h requires fix sph/astro (integrator and per-particle state)");
   if (modify->get_fix_by_style("^sph/astro/h$").size() > 1)
     error->all(FLERR, "fix sph/astro/h: only one instance is allowed");
@@ -154,7 +180,6 @@ void FixSPHAstroH::init()
       error->warning(FLERR, "fix sph/astro/h dhdt: particles outside group {} keep their h",
                      group->names[igroup]);
   }
-  failures_local_ = 0;
   rebuild_requested_ = false;
   if (collections_) setup_collections();
 }
@@ -176,7 +201,7 @@ void FixSPHAstroH::setup_collections()
                  "fix sph/astro/h collections: pair_style sph/astro must be the only pair style "
                  "with a neighbour list (the collections size the lists of every pair style by "
                  "h); sph/astro/gravity qualifies only without kspace (direct summation)");
-  const double *h = atom->dvector[state_.h];
+  const double *h = atom->dvector[state_->h];
   double hmin_local = INFINITY, hmin;
   for (int i = 0; i < atom->nlocal; i++) hmin_local = MIN(hmin_local, h[i]);
   MPI_Allreduce(&hmin_local, &hmin, 1, MPI_DOUBLE, MPI_MIN, world);
@@ -228,7 +253,7 @@ void FixSPHAstroH::setup(int /*vflag*/)
   }
   if (rebuild_ <= 0.0 || mode_ != Mode::ITERATE) return;
   int capped;
-  MPI_Allreduce(&capped_, &capped, 1, MPI_INT, MPI_SUM, world);
+  MPI_Allreduce(&pair_->h_statistics().capped, &capped, 1, MPI_INT, MPI_SUM, world);
   if (capped == 0) return;
   rebuild_requested_ = true;
   rebuilds_++;
@@ -247,7 +272,7 @@ void FixSPHAstroH::setup(int /*vflag*/)
 int FixSPHAstroH::outgrown_lists() const
 {
   if (!collections_ && !pair_->pruning()) return 0;
-  const double *h = atom->dvector[state_.h];
+  const double *h = atom->dvector[state_->h];
   const double grow = PairSPHAstro::PRUNE_REBUILD;
   int outgrown_local = 0, outgrown;
   for (int i = 0; i < atom->nlocal; i++) {
@@ -270,7 +295,7 @@ void FixSPHAstroH::end_of_step()
     prune_rebuilds_++;
   if (rebuild_ <= 0.0 || rebuild_requested_) return;
   const int ntypes = atom->ntypes;
-  const double *h = atom->dvector[state_.h];
+  const double *h = atom->dvector[state_->h];
   const int *type = atom->type;
   // largest h per type and largest h / cap with the atom that has it
   std::vector<double> hmax_local(ntypes + 1, 0.0), hmax(ntypes + 1, 0.0);
@@ -316,10 +341,9 @@ void FixSPHAstroH::post_run()
 
 void FixSPHAstroH::advance_h(double dt)
 {
-  int ncol;
-  const auto *divv = static_cast<double *>(pair_->extract_peratom("divv", ncol));
+  const double *divv = pair_->divv();
   if (!divv || pair_->computed_nlocal() != atom->nlocal) return;
-  double *h = atom->dvector[state_.h];
+  double *h = atom->dvector[state_->h];
   const int *mask = atom->mask;
   const double dt_over_d = dt / domain->dimension;
   for (int i = 0; i < atom->nlocal; i++) {
@@ -329,26 +353,17 @@ void FixSPHAstroH::advance_h(double dt)
   }
 }
 
-void FixSPHAstroH::record(double iterations_sum, int iterations_max, int nparticles, int failures,
-                          int capped)
-{
-  iter_sum_ = iterations_sum;
-  iter_max_ = iterations_max;
-  nparticles_ = nparticles;
-  capped_ = capped;
-  failures_local_ += failures;
-}
-
 double FixSPHAstroH::compute_vector(int n)
 {
+  const SPHAstro::GradhStatistics &stats = pair_->h_statistics();
   if (n == 0) {
-    double local[2] = {iter_sum_, static_cast<double>(nparticles_)}, all[2];
+    double local[2] = {stats.iterations_sum, static_cast<double>(stats.particles)}, all[2];
     MPI_Allreduce(local, all, 2, MPI_DOUBLE, MPI_SUM, world);
     return all[1] > 0.0 ? all[0] / all[1] : 0.0;
   }
   if (n == 1) {
     int all;
-    MPI_Allreduce(&iter_max_, &all, 1, MPI_INT, MPI_MAX, world);
+    MPI_Allreduce(&stats.iterations_max, &all, 1, MPI_INT, MPI_MAX, world);
     return all;
   }
   if (n == 4) return static_cast<double>(rebuilds_);
@@ -360,11 +375,11 @@ double FixSPHAstroH::compute_vector(int n)
     return static_cast<double>(all);
   }
   if (n == 2) {
-    bigint all = 0;
-    MPI_Allreduce(&failures_local_, &all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+    bigint local = pair_->h_failures(), all = 0;
+    MPI_Allreduce(&local, &all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
     return static_cast<double>(all);
   }
   int all;
-  MPI_Allreduce(&capped_, &all, 1, MPI_INT, MPI_SUM, world);
+  MPI_Allreduce(&stats.capped, &all, 1, MPI_INT, MPI_SUM, world);
   return all;
 }

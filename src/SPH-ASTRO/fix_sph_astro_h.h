@@ -1,5 +1,8 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   SPH-ASTRO: astrophysical smoothed particle hydrodynamics for LAMMPS
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -12,12 +15,15 @@ FixStyle(sph/astro/h,FixSPHAstroH);
 #define LMP_FIX_SPH_ASTRO_H_H
 
 #include "fix.h"
-#include "sph_astro_state.h"
+
+namespace SPHAstro {
+struct StateIndex;
+}
 
 namespace LAMMPS_NS {
 
 // Variable smoothing length for pair sph/astro (the pair reads the mode and settings):
-//   dhdt:    dh/dt = (h/d) div v                     (seed 000 eq. 1; seed 004 eqs. 50-53)
+//   dhdt:    dh/dt = (h/d) div v                     (Benz 1990; Monaghan 1992)
 //   iterate: h = hfact (m/rho)^(1/d) solved with rho(h) by Newton-Raphson with bisection,
 //            grad-h factor Omega in force and energy (Springel & Hernquist 2002; Price 2012)
 class FixSPHAstroH : public Fix {
@@ -25,6 +31,7 @@ class FixSPHAstroH : public Fix {
   enum class Mode { DHDT, ITERATE };
 
   FixSPHAstroH(class LAMMPS *, int, char **);
+  ~FixSPHAstroH() override;
   int setmask() override;
   void init() override;
   void setup(int) override;
@@ -45,8 +52,9 @@ class FixSPHAstroH : public Fix {
   bool rebuild_requested() const { return rebuild_requested_; }
   void clear_rebuild_request() { rebuild_requested_ = false; }
 
-  // h-iteration statistics of one density pass (summed over ranks by the fix when asked)
-  void record(double iterations_sum, int iterations_max, int nparticles, int failures, int capped);
+  // settings pair sph/astro reads at its init: "iterate" (int), "hfact", "tolerance",
+  // "maxiter" (int), "margin"
+  void *extract(const char *, int &) override;
 
  protected:
   Mode mode_ = Mode::ITERATE;
@@ -64,13 +72,9 @@ class FixSPHAstroH : public Fix {
   int outgrown_lists() const;
   void setup_collections();
 
-  SPHAstro::StateIndex state_;
+  SPHAstro::StateIndex *state_;
   class PairSPHAstro *pair_ = nullptr;
-
-  // statistics of the latest density pass on this rank, and failures since the run began
-  double iter_sum_ = 0.0;
-  int iter_max_ = 0, nparticles_ = 0, capped_ = 0;
-  bigint failures_local_ = 0;    // summed over ranks when asked
+  int iterate_flag_ = 1;    // extract("iterate")
 };
 
 }    // namespace LAMMPS_NS

@@ -1,6 +1,11 @@
 /* ----------------------------------------------------------------------
-   SPH-ASTRO: Morris & Monaghan and Cullen & Dehnen viscosity switches
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
 ------------------------------------------------------------------------- */
+
+// Morris & Monaghan and Cullen & Dehnen viscosity switches
 
 // fix ID group sph/astro/switch morris-monaghan ALPHA_MIN ALPHA_MAX L
 // fix ID group sph/astro/switch cullen-dehnen ALPHA_MIN ALPHA_MAX L
@@ -23,6 +28,7 @@
 #include "modify.h"
 #include "pair_sph_astro.h"
 #include "sph_astro_pair_terms.h"
+#include "sph_astro_state.h"
 #include "update.h"
 #include "utils.h"
 
@@ -64,6 +70,14 @@ FixSPHAstroSwitch::FixSPHAstroSwitch(LAMMPS *lmp, int narg, char **arg) : Fix(lm
                arg[4], arg[5]);
   if (!(ell_ > 0.0))
     error->all(FLERR, "fix sph/astro/switch: decay constant L = {} must be > 0", arg[6]);
+}
+
+void *FixSPHAstroSwitch::extract(const char *name, int &dim)
+{
+  dim = 0;
+  needs_curl_ = form_ == Form::CULLEN_DEHNEN ? 1 : 0;
+  if (strcmp(name, "needs_curl") == 0) return &needs_curl_;
+  return nullptr;
 }
 
 int FixSPHAstroSwitch::setmask()
@@ -114,8 +128,10 @@ void FixSPHAstroSwitch::init()
 {
   pair_ = dynamic_cast<PairSPHAstro *>(force->pair_match("^sph/astro$", 0, 0));
   if (!pair_) error->all(FLERR, "fix sph/astro/switch requires pair_style sph/astro");
-  if (!SPHAstro::find_state(lmp, state_) || modify->get_fix_by_style("^sph/astro$").empty())
+  SPHAstro::StateIndex state;
+  if (!SPHAstro::find_state(lmp, state) || modify->get_fix_by_style("^sph/astro$").empty())
     error->all(FLERR, "fix sph/astro/switch requires fix sph/astro");
+  h_index_ = state.h;
   if (modify->get_fix_by_style("^sph/astro/switch$").size() > 1)
     error->all(FLERR, "fix sph/astro/switch: only one instance is allowed");
 
@@ -131,18 +147,16 @@ void FixSPHAstroSwitch::init()
 void FixSPHAstroSwitch::setup(int /*vflag*/)
 {
   if (form_ != Form::CULLEN_DEHNEN) return;
-  int ncol;
-  const auto *divv = static_cast<double *>(pair_->extract_peratom("divv", ncol));
+  const double *divv = pair_->divv();
   double *prev = divv_prev();
   for (int i = 0; i < atom->nlocal; i++) prev[i] = divv[i];
 }
 
 void FixSPHAstroSwitch::final_integrate()
 {
-  int ncol;
-  const auto *divv = static_cast<double *>(pair_->extract_peratom("divv", ncol));
-  const auto *cs = static_cast<double *>(pair_->extract_peratom("soundspeed", ncol));
-  const double *h = atom->dvector[state_.h];
+  const double *divv = pair_->divv();
+  const double *cs = pair_->soundspeed();
+  const double *h = atom->dvector[h_index_];
   double *a = alpha();
   const int *mask = atom->mask;
   const double dt = update->dt;
@@ -154,7 +168,7 @@ void FixSPHAstroSwitch::final_integrate()
                                                 alpha_max_, ell_);
     return;
   }
-  const auto *curlv = static_cast<double *>(pair_->extract_peratom("curlv", ncol));
+  const double *curlv = pair_->curlv();
   double *prev = divv_prev();
   if (!curlv || !prev)
     error->all(FLERR, "fix sph/astro/switch cullen-dehnen: curl v or d_divv_prev is missing");

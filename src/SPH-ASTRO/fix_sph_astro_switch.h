@@ -1,5 +1,8 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   SPH-ASTRO: astrophysical smoothed particle hydrodynamics for LAMMPS
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -12,13 +15,11 @@ FixStyle(sph/astro/switch,FixSPHAstroSwitch);
 #define LMP_FIX_SPH_ASTRO_SWITCH_H
 
 #include "fix.h"
-#include "sph_astro_state.h"
 
 namespace LAMMPS_NS {
 
 // Per-particle artificial viscosity alpha, two switches:
-// morris-monaghan (Morris & Monaghan 1997, J. Comput. Phys. 136, 41; seed 000 "switch to
-// reduce viscosity"):
+// morris-monaghan (Morris & Monaghan 1997, J. Comput. Phys. 136, 41):
 //   d alpha_i/dt = -(alpha_i - alpha_min) / tau_i + S_i,  tau_i = h_i / (l c_i)
 //   S_i = max(-div v_i, 0) (alpha_max - alpha_i)
 // (the source term with the (alpha_max - alpha) factor of Rosswog et al. 2000, which keeps
@@ -44,8 +45,8 @@ class FixSPHAstroSwitch : public Fix {
   double alpha_min() const { return alpha_min_; }
   double alpha_max() const { return alpha_max_; }
   double decay() const { return ell_; }
-  // the pair style computes curl v for this switch
-  bool needs_curl() const { return form_ == Form::CULLEN_DEHNEN; }
+  // "needs_curl" (int): pair sph/astro computes curl v for this switch
+  void *extract(const char *, int &) override;
 
  protected:
   enum class Form { MORRIS_MONAGHAN, CULLEN_DEHNEN };
@@ -53,7 +54,8 @@ class FixSPHAstroSwitch : public Fix {
   double alpha_min_ = 0.1, alpha_max_ = 1.0, ell_ = 0.1;
   int alpha_index_ = -1;
   double *divv_prev();    // d_divv_prev (Cullen-Dehnen)
-  SPHAstro::StateIndex state_;
+  int needs_curl_ = 0;
+  int h_index_ = -1;    // d_h
   class PairSPHAstro *pair_ = nullptr;
 };
 

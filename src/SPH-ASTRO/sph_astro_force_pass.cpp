@@ -1,0 +1,142 @@
+/* ----------------------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
+// Force pass of pair sph/astro (sph_astro_passes.h): accelerations, dissipative heating,
+// sum_j m_j v_ij . grad_i W_ij (for P dV and div v), the signal velocities and the
+// conductivity's diffusion rates, over the half list, with iact_force() (sph_astro_iact.h)
+// for each pair. finish_force() then gives
+//   div v_i = -1/(Omega_i rho_i) sum_j m_j v_ij . grad_i W_ij      (Omega = 1 without grad-h)
+// with pressure-energy the sum carries the weights m_j (e_j - C_i) and is divided by e_i
+// (Hopkins 2013, eq. 18), so that P_i/rho_i^2 times it is the P dV work in every formulation.
+
+#include "sph_astro_passes.h"
+
+#include "pair.h"
+
+namespace SPHAstro {
+namespace {
+
+  struct ForceAdapter {
+    static constexpr KernelUse use = KernelUse::GRADIENT;
+    const PassContext &ctx;
+    const ForceSettings &s;
+    const Fields &f;
+    double **force;
+    double *dudt;
+    struct Own {
+      ForceParticle pi;
+      double fx, fy, fz, vgw, heat, vsig, crate;
+    };
+    void load(int i, ForceParticle &q) const
+    {
+      const double rho = ctx.rho[i];
+      q.m = ctx.p.mass_of(i);
+      q.rho = rho;
+      q.P = f.pressure[i];
+      q.c = f.soundspeed[i];
+      q.h = ctx.p.h[i];
+      switch (s.pressure) {
+        case PressureForm::GEOMETRIC:
+          q.prho = f.pgeo[i];
+          q.e = q.C = 0.0;
+          break;
+        case PressureForm::PRESSURE_ENERGY:
+          q.prho = f.pgeo[i] / q.P;
+          q.e = f.pgeo[i];
+          q.C = s.gradh ? f.pe_gradh[i] : 0.0;
+          break;
+        default:
+          q.prho = q.P / ((s.gradh ? f.omega[i] : 1.0) * rho * rho);
+          q.e = q.C = 0.0;
+      }
+      q.alpha = s.alpha_per_particle ? ctx.alpha[i] : s.alpha;
+      q.shear = s.balsara ? f.balsara[i] : 1.0;
+      q.u = s.alpha_u > 0.0 ? ctx.uest[i] : 0.0;
+      q.vgrad = s.reconstruct ? f.vgrad[i] : nullptr;
+      q.vx = ctx.vest[i][0];
+      q.vy = ctx.vest[i][1];
+      q.vz = ctx.vest[i][2];
+    }
+    void begin(int i, Own &own) const
+    {
+      load(i, own.pi);
+      own.fx = own.fy = own.fz = own.vgw = own.heat = own.vsig = own.crate = 0.0;
+    }
+    void pair(int i, int j, double dx, double dy, double dz, const PairGradient &g, Own &own,
+              bool update_j) const
+    {
+      ForceParticle pj;
+      load(j, pj);
+      ForceContribution c;
+      iact_force(s, own.pi, pj, dx, dy, dz, g, c);
+      own.fx += dx * c.fpair;
+      own.fy += dy * c.fpair;
+      own.fz += dz * c.fpair;
+      own.vgw += c.vgw_i;
+      own.heat += c.heat_i;
+      own.crate += c.crate_i;
+      if (c.vsig > own.vsig) own.vsig = c.vsig;
+      if (update_j) {
+        force[j][0] -= dx * c.fpair;
+        force[j][1] -= dy * c.fpair;
+        force[j][2] -= dz * c.fpair;
+        f.vdotgradw[j] += c.vgw_j;
+        if (s.energy) dudt[j] += c.heat_j;
+        if (s.signal && c.vsig > f.vsigmax[j]) f.vsigmax[j] = c.vsig;
+        if (s.alpha_u > 0.0) f.condrate[j] += c.crate_j;
+      }
+      if (ctx.tally)
+        ctx.tally->ev_tally(i, j, ctx.p.nlocal, ctx.newton, 0.0, 0.0, c.fpair, dx, dy, dz);
+    }
+    void end(int i, Own &own) const
+    {
+      force[i][0] += own.fx;
+      force[i][1] += own.fy;
+      force[i][2] += own.fz;
+      f.vdotgradw[i] += own.vgw;
+      if (s.energy) dudt[i] += own.heat;
+      if (s.signal && own.vsig > f.vsigmax[i]) f.vsigmax[i] = own.vsig;
+      if (s.alpha_u > 0.0) f.condrate[i] += own.crate;
+    }
+  };
+
+}    // namespace
+
+void force_pass(const PassContext &ctx, const ForceSettings &s, bool two_h, bool average)
+{
+  Fields &f = *ctx.f;
+  const bool signal = s.viscosity && s.signal;
+  const int nzero = ctx.nzero();
+  for (int i = 0; i < nzero; i++) {
+    f.vdotgradw[i] = 0.0;
+    if (s.energy) ctx.dudt[i] = 0.0;
+    if (signal) f.vsigmax[i] = 2.0 * f.soundspeed[i];    // at least the pair with itself
+    if (s.alpha_u > 0.0) f.condrate[i] = 0.0;
+  }
+  ForceSettings settings = s;
+  settings.signal = signal;
+  with_variant(ctx.kernel, ctx.dim, two_h, [&](auto v) {
+    using V = decltype(v);
+    ForceAdapter act{ctx, settings, f, ctx.force, ctx.dudt};
+    pair_loop<typename V::kernel, V::dim, V::two_h>(ctx.half, ctx.p, ctx.newton, average, act);
+  });
+}
+
+void finish_force(const PassContext &ctx, const ForceSettings &s)
+{
+  Fields &f = *ctx.f;
+  const int nlocal = ctx.p.nlocal;
+  const bool pe = s.pressure == PressureForm::PRESSURE_ENERGY;
+  if (pe)
+    for (int i = 0; i < nlocal; i++) f.vdotgradw[i] /= f.pgeo[i];
+  // (the pressure-energy grad-h terms are in C, not in Omega)
+  const bool omega = s.gradh && !pe;
+  for (int i = 0; i < nlocal; i++)
+    f.divv[i] = -f.vdotgradw[i] / ((omega ? f.omega[i] : 1.0) * ctx.rho[i]);
+}
+
+}    // namespace SPHAstro

@@ -1,0 +1,153 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
+// The one neighbour loop of the pair passes. pair_loop() walks a neighbour list (half or
+// full), takes the positions, tests the kernel support(s) of the pair, evaluates the pair's
+// kernel (value or gradient, sph_astro_iact.h) and hands it to an interaction adapter, which
+// gathers the particles' numbers, calls the interaction function and accumulates for i and,
+// where update_j (newton on, or j owned), for j. gather_row() is the gather form over one row
+// of a full list at one h_i (the h-rho iteration). with_variant() selects the compiled
+// variant: kernel x dimension x {mean h, two h}; every other option is a run-time value.
+//
+// An adapter ACT provides
+//   static constexpr KernelUse use;   what the pair needs of the kernel
+//   struct Own;                      i's loaded numbers and accumulators
+//   void begin(int i, Own &);        void end(int i, Own &);
+//   void pair(int i, int j, double w, Own &, bool update_j)                        (VALUE)
+//   void pair(int i, int j, double dx, double dy, double dz, const PairGradient &,
+//             Own &, bool update_j)                                                 (GRADIENT)
+//   void pair(int i, int j, Own &, bool update_j)                                   (SUPPORT)
+
+#ifndef LMP_SPH_ASTRO_PAIR_LOOP_H
+#define LMP_SPH_ASTRO_PAIR_LOOP_H
+
+#include "lmptype.h"
+#include "sph_astro_iact.h"
+#include "sph_astro_pruned_list.h"
+
+namespace SPHAstro {
+
+// the atom arrays every pass reads
+struct Particles {
+  double **x;
+  const double *h;
+  const int *type;
+  const double *rmass;
+  const double *mass;
+  int nlocal, nall;
+  double mass_of(int i) const { return rmass ? rmass[i] : mass[type[i]]; }
+};
+
+enum class KernelUse { SUPPORT, VALUE, GRADIENT };
+
+// pair inside the support(s): r < R h_ij (mean h) or r < R max(h_i, h_j) (two h)
+template <bool TWO_H> inline bool within_support(double R2, const KernelSide &ki, double hj, double r2)
+{
+  if (TWO_H) return r2 < ki.support2 || r2 < R2 * hj * hj;
+  const double hij = 0.5 * (ki.h + hj);
+  return r2 < R2 * hij * hij;
+}
+
+// average: the averaged kernel (two h only): both gradients replaced by their mean
+template <class KERNEL, int DIM, bool TWO_H, class ACT>
+void pair_loop(const NeighView &nl, const Particles &p, bool newton, bool average, ACT &act)
+{
+  const PairKernel<KERNEL, DIM> kern;
+  double **x = p.x;
+  const double *h = p.h;
+  const int nlocal = p.nlocal;
+  for (int ii = 0; ii < nl.inum; ii++) {
+    const int i = nl.ilist[ii];
+    const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
+    const KernelSide ki(h[i], kern.R2);
+    typename ACT::Own own;
+    act.begin(i, own);
+    const int *jlist = nl.firstneigh[i];
+    const int jnum = nl.numneigh[i];
+    for (int jj = 0; jj < jnum; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      const bool update_j = newton || j < nlocal;
+      if constexpr (ACT::use == KernelUse::VALUE) {
+        double w;
+        if (!pair_kernel_value<KERNEL, DIM, TWO_H>(kern, ki, h[j], r2, w)) continue;
+        act.pair(i, j, w, own, update_j);
+      } else if constexpr (ACT::use == KernelUse::GRADIENT) {
+        PairGradient g;
+        if (!pair_kernel_gradient<KERNEL, DIM, TWO_H>(kern, ki, h[j], r2, average, g)) continue;
+        act.pair(i, j, dx, dy, dz, g, own, update_j);
+      } else {
+        if (!within_support<TWO_H>(kern.R2, ki, h[j], r2)) continue;
+        act.pair(i, j, own, update_j);
+      }
+    }
+    act.end(i, own);
+  }
+}
+
+// the neighbours j of one row with r_ij^2 < support2: row(j, dx, dy, dz, r2)
+template <class ROW>
+inline void gather_row(double **x, int i, const int *jlist, int jnum, double support2, ROW &&row)
+{
+  const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
+  for (int jj = 0; jj < jnum; jj++) {
+    const int j = jlist[jj] & NEIGHMASK;
+    const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
+    const double r2 = dx * dx + dy * dy + dz * dz;
+    if (r2 >= support2) continue;
+    row(j, dx, dy, dz, r2);
+  }
+}
+
+// a compiled variant of the passes: kernel, dimension, mean h or two h
+template <class KERNEL, int DIM, bool TWO_H> struct Variant {
+  using kernel = KERNEL;
+  static constexpr int dim = DIM;
+  static constexpr bool two_h = TWO_H;
+};
+
+template <class KERNEL, class F> inline void with_dimension(int dim, bool two_h, F &&f)
+{
+  if (dim == 2) {
+    if (two_h)
+      f(Variant<KERNEL, 2, true>());
+    else
+      f(Variant<KERNEL, 2, false>());
+  } else {
+    if (two_h)
+      f(Variant<KERNEL, 3, true>());
+    else
+      f(Variant<KERNEL, 3, false>());
+  }
+}
+
+// f(Variant<...>()) for the run-time kernel, dimension (2 or 3) and kernel form
+template <class F> inline void with_variant(KernelType kernel, int dim, bool two_h, F &&f)
+{
+  switch (kernel) {
+    case KernelType::CUBIC:
+      with_dimension<KernelCubic>(dim, two_h, f);
+      break;
+    case KernelType::QUINTIC:
+      with_dimension<KernelQuintic>(dim, two_h, f);
+      break;
+    case KernelType::WENDLAND_C2:
+      with_dimension<KernelWendlandC2>(dim, two_h, f);
+      break;
+    case KernelType::WENDLAND_C4:
+      with_dimension<KernelWendlandC4>(dim, two_h, f);
+      break;
+    case KernelType::GAUSSIAN:
+      with_dimension<KernelGaussian>(dim, two_h, f);
+      break;
+  }
+}
+
+}    // namespace SPHAstro
+
+#endif

@@ -1,0 +1,131 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
+// The neighbour passes of pair sph/astro. Each is one pair_loop() (sph_astro_pair_loop.h)
+// with an interaction adapter around the functions of sph_astro_iact.h, compiled per kernel,
+// dimension and kernel form; the options of a scene are run-time values. The passes read
+// and write plain arrays: they do not communicate (pair sph/astro sums the ghosts' parts
+// with a reverse communication after a pass and sends what the next pass needs).
+//
+// The order in one force evaluation (PairSPHAstro::compute): density (summation, h-rho
+// iteration with its velocity sums, or none with density continuity) -> equation of state ->
+// velocity sums (Balsara, Cullen-Dehnen, reconstruction) -> forward communication -> force
+// -> conduction.
+
+#ifndef LMP_SPH_ASTRO_PASSES_H
+#define LMP_SPH_ASTRO_PASSES_H
+
+#include "lmptype.h"
+#include "sph_astro_iact.h"
+#include "sph_astro_pair_loop.h"
+
+namespace LAMMPS_NS {
+class Error;
+class Pair;
+}    // namespace LAMMPS_NS
+
+namespace SPHAstro {
+
+// per-atom results of the passes (owned + ghost atoms); null where the scene does not need one
+struct Fields {
+  double *pressure = nullptr;      // P
+  double *soundspeed = nullptr;    // c_s
+  double *vdotgradw = nullptr;     // sum_j m_j v_ij . grad_i W_ij (= -rho_i div v_i)
+  double *divv = nullptr;          // div v
+  double *nneigh = nullptr;        // neighbours inside the kernel support
+  double *omega = nullptr;         // grad-h factor Omega (1 without grad-h terms)
+  double **dcurl = nullptr;        // sums for div v and curl v: v_ij . grad W, v_ij x grad W
+  double *curlv = nullptr;         // |curl v|
+  double *balsara = nullptr;       // Balsara factor of this step
+  double *vsigmax = nullptr;       // signal viscosity: max_j v_sig,ij
+  double **vgsum = nullptr;        // reconstruction: the sums M, G of grad v = G M^-1
+  double **vgrad = nullptr;        // reconstruction: symmetric grad v and spacing Delta
+  double *condrate = nullptr;      // artificial conductivity: sum_j m_j k_ij |dW/dr| r
+  double *pe_gradh = nullptr;      // pressure-energy with grad-h terms: C_i
+  double *pgeo = nullptr;          // pressure geometric: sqrt(P)/rho; pressure-energy: P/rho
+  double *conduct = nullptr;       // physical heat conduction: du/dt of this step
+};
+
+// what every pass sees
+struct PassContext {
+  KernelType kernel;
+  int dim;
+  Particles p;
+  NeighView half;    // the half list of the passes
+  bool newton;
+  Fields *f;
+  double *rho;          // the density of this force evaluation (summed, or predicted)
+  double *rho_sum;      // where the summation writes (d_rho)
+  double *uest;         // predicted u (owned + ghost where a pass needs it)
+  double **vest;        // predicted v
+  double *dudt;
+  double **force;
+  const double *alpha;    // per-atom alpha of a viscosity switch, or null
+  const LAMMPS_NS::tagint *tag;
+  LAMMPS_NS::Error *error;
+  LAMMPS_NS::Pair *tally;    // non-null: tally the pair virial (ev_tally)
+  int nzero() const { return newton ? p.nall : p.nlocal; }
+};
+
+// rho_i = sum_j m_j W_ij with the self term (or sum_j m_j u_j W_ij with weight_u), into
+// rho_sum, and the neighbour counts; two_h: the averaged kernel
+void density_summation(const PassContext &ctx, bool two_h, bool weight_u);
+// neighbours inside the support only (density continuity has no summation pass)
+void count_neighbours(const PassContext &ctx, bool two_h);
+
+// the h-rho iteration over a full list (Springel & Hernquist 2002; Price 2012, sec. 2.4)
+enum class VelocitySums { NONE, CURL, GRADIENT };
+struct GradhSettings {
+  double hfact, tolerance;
+  int max_iterations;
+  NeighView full;                // the (pruned) full list
+  NeighView fallback;            // LAMMPS' full list, for an h past hlist
+  const double *hlist;           // the largest h each row of full serves (null: any)
+  const double *hcap_type;       // h cap per type
+  const int *collection;         // neighbor multi collection of each atom, or null
+  const double *collection_cut;  // cutoff of each collection
+  double kernel_radius;
+  VelocitySums sums;
+  bool pressure_energy;
+  double gamma;
+  double h_limit(const Particles &p, int i) const
+  {
+    const double cap = hcap_type[p.type[i]];
+    if (!collection) return cap;
+    const double cut = collection_cut[collection[i]] / kernel_radius;
+    return cut < cap ? cut : cap;
+  }
+};
+struct GradhStatistics {
+  double iterations_sum = 0.0;
+  int iterations_max = 0, particles = 0, failures = 0, capped = 0;
+  LAMMPS_NS::bigint list_fallbacks = 0;    // atoms whose iteration went past hlist
+};
+void density_gradh(const PassContext &ctx, const GradhSettings &s, GradhStatistics &stats);
+
+// velocity sums over the half list (curl: dcurl; gradient: vgsum); two_h: averaged kernel
+void velocity_sums(const PassContext &ctx, bool two_h, VelocitySums sums);
+// div v, |curl v| and the Balsara factor of the owned atoms from dcurl (omega: grad-h)
+void finish_curl(const PassContext &ctx, bool omega, bool balsara);
+// symmetric grad v and the spacing of the owned atoms from vgsum; with curl, the div and curl
+// sums follow from G
+void finish_velocity_gradient(const PassContext &ctx, double trigger, bool curl);
+
+// accelerations, du/dt and div v; two_h: grad-h or averaged kernel (average)
+void force_pass(const PassContext &ctx, const ForceSettings &s, bool two_h, bool average);
+// after the ghosts' parts are summed: div v (and, with pressure-energy, the P dV sum / e_i)
+void finish_force(const PassContext &ctx, const ForceSettings &s);
+
+// physical heat conduction into f->conduct; two_h: mean of dW/dr at h_i and h_j
+void conduction_pass(const PassContext &ctx, double kappa, bool two_h);
+
+// XSPH drift correction over a full list (mean h): dv_i = eps sum_j m_j/rho_ij (v_j - v_i) W_ij
+void xsph_pass(const PassContext &ctx, const NeighView &full, double eps, double **out);
+
+}    // namespace SPHAstro
+
+#endif
