@@ -153,7 +153,7 @@ def analyse_sedov(dump_path, run):
 
 
 def analyse_toystar(dump_path, run):
-    """Toy star (examples/toystar/in.toystar) against rho(r) of seed 001: L1(rho)/rho_c and the
+    """Toy star (examples/toystar/in.toystar) against its equilibrium rho(r): L1(rho)/rho_c and the
     |relative error| of the fitted radius R_fit after the damped relaxation (DUMP.relaxed), their
     drift over the undamped continuation (DUMP), and from the log the largest kinetic energy
     of the continuation over the thermal energy and its |relative energy error|."""
@@ -239,9 +239,9 @@ SCENES: Dict[str, Scene] = {
                 "hmode=iterate,switch=cd;hmode=iterate,visc=signal,switch=cd;"
                 "hmode=iterate,recon=yes",
         presets={"phantom": Preset(
-            # Phantom's 3D Sod (../shared/DESIGN.md: gamma 5/3, quintic kernel, 2 OpenMP
-            # threads, L1(rho) per particle over |x| < 0.5); ny 8 and these nx give its exact
-            # particle counts (4 x 8^2 x nx left, an eighth of that right)
+            # Phantom's 3D Sod (Price et al. 2018, PASA 35, e031; gamma 5/3, quintic kernel,
+            # 2 OpenMP threads, L1(rho) per particle over |x| < 0.5); ny 8 and these nx give
+            # its exact particle counts (4 x 8^2 x nx left, an eighth of that right)
             resolutions=(57, 129, 273), np=2, var=("ny=8", "switch=cd"),
             # the third: Wendland C4 at hfact 1.6 with Courant 0.6, margin 1.4, skin 1.0 and
             # neighbour bins of a quarter of the left state's cutoff (binsize 0.95 h)
@@ -277,7 +277,7 @@ SCENES: Dict[str, Scene] = {
                 ("rhoc", "rho_c_err"), ("drift_l1", "dL1_free"), ("drift_r", "dR_free"),
                 ("ekin", "Ekin/Eth_free"), ("energy", "dE_free")),
         plot=("l1", "rfit"), fit="l1",
-        notes="toy star (seed 001), 3D, n = 1: N ~ 2.1 n^3; damped to t = 12, then undamped "
+        notes="toy star, 3D, n = 1: N ~ 2.1 n^3; damped to t = 12, then undamped "
               "to t = 18; L1 over all particles; R_fit: radius of the fitted rho^(1/n) = "
               "A (R^2 - r^2); *_free: drift/largest values over the undamped continuation"),
     "noh": Scene(

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Obtain the LAMMPS 4 Feb 2025 source from Debian's source package (see ../shared/DESIGN.md).
+# Obtain the LAMMPS 4 Feb 2025 source from Debian's source package.
 # Usage: tools/fetch_lammps.sh DESTDIR   -> prints the path of the unpacked source tree
 # Only the upstream tarball is used; its sha256 is checked, apt's exit code is not trusted
 # (the registry may answer 404 for the .dsc while the tarball arrives).

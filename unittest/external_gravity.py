@@ -3,14 +3,16 @@
 
 Isolated particles (no SPH neighbours: only the external forces act) under
 
-1. ``plummer``: a Plummer-softened point mass (seed 004 eqs. 76-77), F = -G M m r/(r^2+eps^2)^(3/2),
+1. ``plummer``: a Plummer-softened point mass (Plummer 1911, MNRAS 71, 460),
+   F = -G M m r/(r^2+eps^2)^(3/2),
    through fix addforce with atom-style variables and its potential energy
    -G M m/(r^2+eps^2)^(1/2) through the ``energy`` keyword + fix_modify energy yes. Checks:
    compute sph/astro/global's potential energy (c_sum[10]) is that sum, computed here from the
    positions; the angular momentum about the point mass is conserved to round-off by the
    kick-drift-kick leapfrog of fix sph/astro; the relative energy error falls as dt^2
    (halving dt divides it by 3.5-4.5) and stays below its measured size + 20 %.
-2. ``linear``: the toy star's -lambda r (seed 001) with energy 1/2 lambda m r^2: a particle
+2. ``linear``: the toy star's -lambda r (Monaghan & Price 2004) with energy 1/2 lambda m r^2:
+   a particle
    released at rest returns after one period 2 pi / sqrt(lambda) (to dt^2); with the
    adaptive timestep, fix sph/astro's force criterion (f_gas[2]) is 0.3 sqrt(h / |a|) of this
    external acceleration (the criterion sees the total force, including fixes).

@@ -1,3 +1,10 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
 // Helpers for LAMMPS-driven tests: a LAMMPS instance with the SPH-ASTRO plugin
 // loaded, and small standard particle systems.
 

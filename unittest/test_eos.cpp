@@ -1,3 +1,10 @@
+/* ----------------------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
 // Equations of state: pressure, sound speed and the energy used for
 // bookkeeping.
 
@@ -44,7 +51,7 @@ TEST(EOS, Isothermal)
 
 TEST(EOS, Polytropic)
 {
-  // toy star (seed 001): P = k rho^(1+1/n), n = 1 -> gamma = 2
+  // toy star (Monaghan & Price 2006): P = k rho^(1+1/n), n = 1 -> gamma = 2
   EOS eos;
   eos.type = EOSType::POLYTROPIC;
   eos.K = 0.1;

@@ -1,3 +1,10 @@
+/* ----------------------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
 // LAMMPS-driven tests of self-gravity: pair sph/astro/gravity, kspace pppm/sph/astro/gravity and
 // msm/sph/astro/gravity against compute sph/astro/gravity/direct (direct summation for open
 // boundaries, Ewald summation for periodic boxes), momentum conservation, the hybrid/overlay

@@ -1,3 +1,10 @@
+/* ----------------------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
 // Kernel-softened gravity (sph_astro_gravity_kernel.h) without LAMMPS: the closed forms of the
 // softened force and potential of every kernel against numerical integration of the kernel's
 // mass function M(<r) = 4 pi int W r^2 dr, the Newtonian limit beyond the support, finite

@@ -1,3 +1,10 @@
+/* ----------------------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
 // Kernel properties for every kernel in 1, 2 and 3D: normalisation (integral of
 // W over space = 1), compact support, W decreasing, and dW/dr against a
 // numerical derivative.
@@ -108,29 +115,30 @@ TEST(KernelNames, RoundTripAndAliases)
   EXPECT_FALSE(kernel_from_name("lucy", parsed));
 }
 
-TEST(KernelValues, CubicSplineMatchesSeed)
+TEST(KernelValues, CubicSplineMatchesMonaghanLattanzio)
 {
-  // seed 000: W = 1/(pi h^3) [1 - 3/2 q^2 + 3/4 q^3] for q <= 1, 1/4 (2-q)^3
-  // for 1 <= q <= 2
+  // Monaghan & Lattanzio 1985 (A&A 149, 135): W = 1/(pi h^3) [1 - 3/2 q^2 + 3/4 q^3] for
+  // q <= 1, 1/4 (2-q)^3 for 1 <= q <= 2
   const double h = 2.0;
   EXPECT_NEAR(kernel_W(KernelType::CUBIC, 3, 1.0, h),
               (1 - 1.5 * 0.25 + 0.75 * 0.125) / (M_PI * 8.0), 1e-15);
   EXPECT_NEAR(kernel_W(KernelType::CUBIC, 3, 3.0, h), 0.25 * 0.125 / (M_PI * 8.0), 1e-15);
 }
 
-TEST(KernelValues, GaussianMatchesSeedInsideTheSupport)
+TEST(KernelValues, GaussianMatchesUntruncatedInsideTheSupport)
 {
-  // seeds 000/001: W = (h sqrt(pi))^-d exp(-r^2/h^2); the truncated, shifted kernel is
+  // Gingold & Monaghan 1977 (MNRAS 181, 375): W = (h sqrt(pi))^-d exp(-r^2/h^2); the
+  // truncated, shifted kernel is
   // sigma_d h^-d (exp(-q^2) - exp(-9)) with sigma_d 0.04-0.3 % above pi^(-d/2)
   const double h = 0.8, e9 = std::exp(-9.0);
   for (int dim : {1, 2, 3}) {
-    const double seed0 = std::pow(h * std::sqrt(M_PI), -dim);
-    const double sigma_ratio = kernel_W(KernelType::GAUSSIAN, dim, 0.0, h) / (seed0 * (1.0 - e9));
+    const double w0 = std::pow(h * std::sqrt(M_PI), -dim);
+    const double sigma_ratio = kernel_W(KernelType::GAUSSIAN, dim, 0.0, h) / (w0 * (1.0 - e9));
     EXPECT_NEAR(sigma_ratio, 1.0, 3.5e-3) << dim;
     EXPECT_GT(sigma_ratio, 1.0) << "truncation removes mass: sigma must grow";
     for (double q : {0.3, 1.0, 2.0, 2.9})
       EXPECT_NEAR(kernel_W(KernelType::GAUSSIAN, dim, q * h, h),
-                  sigma_ratio * seed0 * (std::exp(-q * q) - e9), 1e-14 * seed0);
+                  sigma_ratio * w0 * (std::exp(-q * q) - e9), 1e-14 * w0);
   }
   // the slope at the edge is not zero: -6 exp(-9) (in units of sigma / h^(d+1))
   const double sigma3 = kernel_W(KernelType::GAUSSIAN, 3, 0.0, 1.0) / (1.0 - e9);

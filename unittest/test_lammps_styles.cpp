@@ -1,3 +1,10 @@
+/* ----------------------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
 // LAMMPS-driven tests of the SPH-ASTRO styles through the LAMMPS C++ library
 // interface: conservation, time-integration order, restart, data files,
 // per-atom output and the errors for bad input.

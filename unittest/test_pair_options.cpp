@@ -1,6 +1,13 @@
-// LAMMPS-driven tests of the seeds' other choices of pair_style sph/astro (issue 3):
-// density continuity (rho integrated by fix sph/astro, seed 004 eq. 33), symmetrise kernel
-// and pressure geometric (seed 000, "alternative ways to force anti-symmetry"): uniform
+/* ----------------------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
+// LAMMPS-driven tests of the alternative formulations of pair_style sph/astro (issue 3):
+// density continuity (rho integrated by fix sph/astro; Monaghan 1992), symmetrise kernel
+// (Hernquist & Katz 1989) and pressure geometric: uniform
 // motion, conservation, energy error order, restart (settings and bit-for-bit continuation),
 // neighbour counts, and the errors for bad values and combinations; formulation
 // pressure-energy (Saitoh & Makino 2013, Hopkins 2013): the same checks, its reduction to the
@@ -42,7 +49,8 @@ static void vary_h(const std::unique_ptr<LAMMPS> &lmp)
 TEST(DensityContinuity, UniformMotionLeavesTheDensityUnchanged)
 {
   // perfect periodic fcc lattice, uniform u, uniform velocity: v_ij = 0 for every pair, so
-  // drho/dt = sum_j m_j v_ij . grad W_ij vanishes exactly (seed 004 eq. 33; eq. 29 would not)
+  // drho/dt = sum_j m_j v_ij . grad W_ij vanishes exactly (Monaghan 1992; the form
+  // sum_j m_j v_j . grad W_ij would not)
   for (const std::string hfix : {"", "fix hvar all sph/astro/h dhdt"}) {
     auto lmp = open_lammps();
     gas(lmp, "box", 3, GAS + " density continuity", "sph/astro", 1.0, 0.0);

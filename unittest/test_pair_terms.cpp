@@ -1,3 +1,10 @@
+/* ----------------------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
 // The dissipative pair terms and the viscosity switch as plain functions.
 
 #include "sph_astro_pair_terms.h"
@@ -33,7 +40,7 @@ TEST(Conductivity, CoefficientIsTheSignalOverTheMeanDensityForBothPartners)
   EXPECT_EQ(conductivity_coefficient(1.0, 0.7, 0.7, 1.0), 0.0);
 }
 
-// Geometric-mean pressure term (seed 000): 2 sqrt(P_i P_j)/(rho_i rho_j) replaces
+// Geometric-mean pressure term: 2 sqrt(P_i P_j)/(rho_i rho_j) replaces
 // P_i/rho_i^2 + P_j/rho_j^2; equal where P/rho^2 is equal, below it elsewhere (AM-GM)
 TEST(PressureGeometric, TermIsTheGeometricMeanOfPOverRhoSquared)
 {
@@ -65,7 +72,8 @@ TEST(PressureGeometric, PairConservesEnergy)
   EXPECT_NEAR(mi * dui + mj * duj, -work, 1e-15);
 }
 
-// Continuity equation, seed 004 eq. 33: zero for equal velocities whatever the kernel; a pair
+// Continuity equation (Monaghan 1992, ARA&A 30, 543): zero for equal velocities whatever the
+// kernel; a pair
 // approaching (v_ij . r_ij < 0, dW/dr < 0) raises the density of both
 TEST(Continuity, RateVanishesForUniformMotionAndGrowsUnderCompression)
 {

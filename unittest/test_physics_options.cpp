@@ -1,3 +1,10 @@
+/* ----------------------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
 // LAMMPS-driven tests of the optional physics of SPH-ASTRO: physical heat conduction
 // (pair_style sph/astro conduction KAPPA, its timestep criterion fix sph/astro conduction C),
 // the timestep criterion of the artificial conductivity (fix sph/astro conductivity C),
@@ -63,7 +70,7 @@ INSTANTIATE_TEST_SUITE_P(PairSPHAstro, Conduction,
 TEST(Conduction, RateIsKappaOverRhoTimesTheLaplacian)
 {
   // u = 1 + 0.01 x^2 on a perfect periodic-free interior: d2u/dx2 = 0.02, so du/dt = kappa /
-  // rho x 0.02 for particles away from the box edges (seed 004 eq. 69)
+  // rho x 0.02 for particles away from the box edges (Brookshaw 1985)
   auto lmp = open_lammps();
   gas(lmp, "box", 6, "sph/astro kernel m6 eos ideal $(5.0/3.0) viscosity none conduction 0.5",
       "sph/astro", 1.0, 0.0);

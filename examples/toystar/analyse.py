@@ -8,8 +8,8 @@ Usage (needs numpy and matplotlib, i.e. Debian's /usr/bin/python3)::
         [--assert 'l1=0.05,rfit=0.02,drift_l1=0.01,ekin=1e-4']
 
 The first dump is the star at the end of the damped relaxation, the optional second one the
-same star after the undamped continuation. The reference is tools/sphastro/toystar.py
-(seed 001): rho(r) = [lambda/(2k(1+n)) (R^2 - r^2)]^n, centred at the origin (the centre
+same star after the undamped continuation. The reference is tools/sphastro/toystar.py:
+rho(r) = [lambda/(2k(1+n)) (R^2 - r^2)]^n, centred at the origin (the centre
 of the linear force). Printed, one figure a line, for each dump:
 
 * ``L1(rho)`` = mean over all particles of |rho_i - rho(r_i)|, also relative to the

@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Toy star (seed 001) set up, run and analysed from Python through LAMMPS' Python module.
+"""Toy star (Monaghan & Price 2004, 2006) set up, run and analysed from Python through LAMMPS'
+Python module.
 
 The same scene as examples/toystar/in.toystar, written as LAMMPS commands issued from
 Python: lambda comes from the Python reference (tools/sphastro/toystar.py) instead of the
@@ -58,7 +59,7 @@ def main():
     parser.add_argument("--R", type=float, default=0.75)
     parser.add_argument("--k", type=float, default=0.1)
     parser.add_argument("--npoly", type=float, default=1.0, help="polytropic index n")
-    parser.add_argument("--nu", type=float, default=1.0, help="damping -nu v (seed 001)")
+    parser.add_argument("--nu", type=float, default=1.0, help="damping -nu v")
     parser.add_argument("--trelax", type=float, default=12.0)
     parser.add_argument("--tfree", type=float, default=6.0)
     parser.add_argument("--hfact", type=float, default=1.2)
@@ -104,7 +105,7 @@ fix             gas all sph/astro courant 0.3 tend {args.trelax!r}
 fix             hvar all sph/astro/h iterate hfact {args.hfact} margin {margin} rebuild 0.9 &
                 collections auto
 set             group all d_h {1.3 * h0!r}
-# seed 001: -lambda r and -nu v per unit mass; potential energy 1/2 lambda m r^2
+# -lambda r and -nu v per unit mass; potential energy 1/2 lambda m r^2
 variable        fx atom -{lam!r}*mass*x
 variable        fy atom -{lam!r}*mass*y
 variable        fz atom -{lam!r}*mass*z

@@ -1,4 +1,11 @@
 /* ----------------------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    SPH-ASTRO: kernel-softened self-gravity, short-range part
 ------------------------------------------------------------------------- */
 
@@ -26,8 +33,8 @@
 // conserves energy). Particles whose h is held at the neighbour-list cap (Omega_i = 1 there)
 // get zeta_i = 0: their h does not follow rho. zeta_i needs sums over all neighbours of i, so
 // the partial sums of ghosts are reverse-communicated and the results forwarded. With a gravity kspace style the pair computes the
-// short-range remainder that the kspace does not supply (seed 004 eq. 79, split as in LAMMPS'
-// coul/long and coul/msm):
+// short-range remainder that the kspace does not supply (the Newtonian potential split as in
+// LAMMPS' coul/long and coul/msm):
 //   PPPM (Ewald split, Hockney & Eastwood; LAMMPS pair coul/long):
 //     phi_short = phi_ij + erf(g r)/r             (-> -erfc(g r)/r beyond the softening)
 //   MSM (Hardy 2006; Hardy et al. 2009, Parallel Computing 35, 164, eq. 4; pair coul/msm):

@@ -1,19 +1,26 @@
 /* -*- c++ -*- ----------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    SPH-ASTRO: physical heat conduction, one particle pair
 ------------------------------------------------------------------------- */
 
 // Heat conduction with a constant conductivity, written directly for the specific internal
 // energy u. For the ideal gas u = c_v T with constant c_v, so the heat equation
-//   rho c_v dT/dt = div(k grad T)                                     (seed 004 eqs. 54-55)
+//   rho c_v dT/dt = div(k grad T)               (Cleary & Monaghan 1999, J. Comput. Phys. 148, 227)
 // reads rho du/dt = div(kappa grad u) with kappa = k / c_v, the conductivity the keyword
 // `conduction KAPPA` of pair sph/astro takes (units mass / (length time)). The diffusivity of
 // u and of T is D = kappa / rho. No mean molecular weight or gas constant is needed.
 //
-// Second derivative from the first derivative of the kernel (seed 004 eqs. 68-69;
-// Brookshaw 1985, Proc. ASA 6, 207; Cleary & Monaghan 1999, J. Comput. Phys. 148, 227):
+// Second derivative from the first derivative of the kernel (Brookshaw 1985, Proc. ASA 6, 207;
+// Cleary & Monaghan 1999, J. Comput. Phys. 148, 227):
 //   du_i/dt += sum_j m_j (kappa_i + kappa_j) (u_i - u_j) / (rho_i rho_j)
 //                    (r_ij . grad_i W_ij) / r_ij^2
-// With kappa_i = kappa_j = kappa this is (kappa / rho_i) x seed 004 eq. 69,
+// With kappa_i = kappa_j = kappa this is (kappa / rho_i) x Brookshaw's Laplacian,
 //   lap u_i = 2 sum_j m_j / rho_j (u_i - u_j) (r_ij . grad_i W_ij) / r_ij^2.
 // r_ij . grad_i W_ij / r_ij^2 = (dW/dr) / r is symmetric in i, j and negative, so heat flows
 // from hot to cold and m_i du_i + m_j du_j = 0 pair by pair: sum_i m_i du_i/dt = 0.

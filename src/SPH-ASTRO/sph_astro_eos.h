@@ -1,13 +1,20 @@
 /* -*- c++ -*- ----------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    SPH-ASTRO: equations of state
 ------------------------------------------------------------------------- */
 
 // Pressure P(rho, u) and sound speed c_s for the gas models of the package.
-//   ideal:      P = (gamma - 1) rho u,  c_s^2 = gamma P / rho       (seed 000 "entropy equation";
-//               seed 004 sec. 9.2; u is the specific internal energy)
-//   isothermal: P = c_s^2 rho, c_s constant                         (seed 000 "pressure")
-//   polytropic: P = K rho^gamma, c_s^2 = gamma P / rho              (seed 001 "polytropic EOS";
-//               seed 004 sec. 9.2)
+//   ideal:      P = (gamma - 1) rho u,  c_s^2 = gamma P / rho       (Monaghan 1992, ARA&A 30, 543;
+//               Springel & Hernquist 2002, MNRAS 333, 649; u is the specific internal energy)
+//   isothermal: P = c_s^2 rho, c_s constant                         (Monaghan 1992)
+//   polytropic: P = K rho^gamma, c_s^2 = gamma P / rho              (Monaghan & Price 2006,
+//               MNRAS 365, 991; Monaghan 1992)
 // Only the ideal gas depends on u, so only it needs (and integrates) the energy equation.
 
 #ifndef LMP_SPH_ASTRO_EOS_H

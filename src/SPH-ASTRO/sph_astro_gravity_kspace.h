@@ -1,4 +1,11 @@
 /* -*- c++ -*- ----------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    SPH-ASTRO: what the gravity kspace styles share
 ------------------------------------------------------------------------- */
 

@@ -1,14 +1,21 @@
 /* -*- c++ -*- ----------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    SPH-ASTRO: astrophysical smoothed particle hydrodynamics for LAMMPS
 ------------------------------------------------------------------------- */
 
 // Smoothing kernels W(r,h) = sigma_d / h^d * w(q), q = r/h, with compact support
 // q < kernel_radius (h is the smoothing length; the support is kernel_radius * h).
 //
-//   cubic spline M4  (seed 000 "the standard kernel"; Monaghan 1992), support 2h
+//   cubic spline M4  (Monaghan & Lattanzio 1985, A&A 149, 135; Monaghan 1992), support 2h
 //   quintic spline M6 (Price 2012, J. Comput. Phys. 231, 759, eq. 11), support 3h
 //   Wendland C2, C4  (Dehnen & Aly 2012, MNRAS 425, 1068, table 1), support 2h
-//   Gaussian         (seed 000 "Gaussian kernel"; seed 001; Gingold & Monaghan 1977),
+//   Gaussian         (Gingold & Monaghan 1977, MNRAS 181, 375),
 //                    truncated at q = 3 and shifted to zero there, support 3h
 //
 // Each kernel is a struct of static inline functions of q only so that the pair loops can
@@ -136,7 +143,7 @@ struct KernelWendlandC4 {
   }
 };
 
-// Gaussian kernel of seeds 000 and 001, W = (1/(h sqrt(pi)))^d exp(-q^2), truncated at q = 3
+// Gaussian kernel of Gingold & Monaghan 1977, W = (1/(h sqrt(pi)))^d exp(-q^2), truncated at q = 3
 // (support 3h) so that it fits neighbour lists. Truncation and shift:
 //   w(q) = exp(-q^2) - exp(-9)  for q < 3,  0 otherwise
 // The shift makes W continuous at the support edge (W(3h) = 0), so the density and the thermal
@@ -148,7 +155,7 @@ struct KernelWendlandC4 {
 //   1D: sqrt(pi) erf(3) - 6 e^-9
 //   2D: pi (1 - e^-9) - 9 pi e^-9 = pi (1 - 10 e^-9)
 //   3D: 4 pi int_0^3 q^2 e^-q^2 dq - (4/3) pi 27 e^-9 = pi^(3/2) erf(3) - 6 pi e^-9 - 36 pi e^-9
-// (the untruncated values are pi^(-d/2), seed 000/001; these are larger by 0.04 %, 0.12 % and
+// (the untruncated values are pi^(-d/2); these are larger by 0.04 %, 0.12 % and
 // 0.30 % in 1D, 2D and 3D).
 struct KernelGaussian {
   static constexpr double radius = 3.0;

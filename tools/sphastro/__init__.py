@@ -2,6 +2,6 @@
 
 Modules: :mod:`riemann` (exact Riemann solver), :mod:`dump` (LAMMPS text dump
 reader), :mod:`sod` (shock-tube error norms and profile plots), :mod:`sedov`
-(Sedov-Taylor solution), :mod:`toystar` (toy-star lambda, profile and errors, seed 001)
+(Sedov-Taylor solution), :mod:`toystar` (toy-star lambda, profile and errors)
 and :mod:`runs` (LAMMPS environment and log parsing for the scripts).
 """

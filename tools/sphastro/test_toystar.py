@@ -1,4 +1,4 @@
-"""Tests of the toy-star reference (tools/sphastro/toystar.py, seed 001).
+"""Tests of the toy-star reference (tools/sphastro/toystar.py).
 
 Run from the repository root with::
 
@@ -65,7 +65,7 @@ class LambdaTest(unittest.TestCase):
 
 class ProfileTest(unittest.TestCase):
     def test_hydrostatic_equilibrium(self):
-        # -dP/dr / rho = lambda r with P = k rho^(1+1/n) (seed 001)
+        # -dP/dr / rho = lambda r with P = k rho^(1+1/n)
         for M, R, k, n in CASES:
             with self.subTest(n=n):
                 lam = toystar.toystar_lambda(M, R, k, n)

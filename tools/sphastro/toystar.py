@@ -1,19 +1,19 @@
-"""The toy star of seed 001 (Larranaga, "Introduction to SPH"; after Monaghan & Price 2004):
+"""The toy star of Monaghan & Price (2004, MNRAS 350, 1449; 2006, MNRAS 365, 991):
 a polytrope P = k rho^(1+1/n) held by the linear force -lambda r per unit mass, in
 equilibrium (v = 0), and the analysis of an SPH-ASTRO toy-star dump against it.
 
-Equilibrium (seed 001, "A linear model for gravity"): 0 = -grad P / rho - lambda r gives
+Equilibrium: 0 = -grad P / rho - lambda r gives
 
     rho(r) = [ lambda / (2 k (1 + n)) (R^2 - r^2) ]^n     for r < R, 0 outside,
 
-and M = integral of rho over the ball of radius R fixes lambda (seed 001, last equation):
+and M = integral of rho over the ball of radius R fixes lambda:
 
     d = 3:  lambda = 2 k (1 + n) pi^(-3/(2n)) / R^2 [ M Gamma(5/2 + n) / (R^3 Gamma(1 + n)) ]^(1/n)
     d = 2:  lambda = 2 k pi^(-1/n) / M [ M (1 + n) / R^2 ]^(1 + 1/n)
 
 (3D: M = 4 pi A^n R^(2n+3) int_0^1 s^2 (1 - s^2)^n ds = pi^(3/2) A^n R^(2n+3) Gamma(1+n) /
-Gamma(5/2+n) with A = lambda / (2k(1+n)); the exponent of pi is -3/(2n), as the seed writes
-it, not -3/2.)
+Gamma(5/2+n) with A = lambda / (2k(1+n)); the exponent of pi is -3/(2n),
+not -3/2.)
 
 Radius measures of an SPH star (``toystar_errors``):
 
@@ -40,7 +40,7 @@ def _check(M, R, k, n):
 
 
 def toystar_lambda(M, R, k, n, dim=3):
-    """lambda of the linear force -lambda r for a toy star of mass M and radius R (seed 001)."""
+    """lambda of the linear force -lambda r for a toy star of mass M and radius R."""
     _check(M, R, k, n)
     if dim == 3:
         return (2.0 * k * (1.0 + n) * math.pi ** (-3.0 / (2.0 * n)) / R ** 2
