@@ -194,7 +194,7 @@ TEST(PairInteraction, ViscousHeatingIsNeverNegative)
 }
 
 // pressure geometric: the force is 2 g_i g_j m_i m_j dW r_ij and both partners take the P dV
-// work g_i g_j v_ij . grad W (Hernquist & Katz 1989), so the pair conserves energy
+// work g_i g_j v_ij . grad W, so the pair conserves energy
 TEST(PairInteraction, GeometricPressureTermAndWork)
 {
   ForceSettings s;

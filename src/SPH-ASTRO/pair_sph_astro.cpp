@@ -70,7 +70,7 @@ PairSPHAstro::~PairSPHAstro()
   if (copymode) return;
   Fields &f = *fields_;
   for (double **a : {&f.pressure, &f.soundspeed, &f.vdotgradw, &f.divv, &f.nneigh, &f.omega,
-                     &f.curlv, &f.balsara, &f.vsigmax, &f.condrate, &f.pe_gradh, &f.pgeo,
+                     &f.curlv, &f.balsara, &f.vsigmax, &f.condrate, &f.pe_gradh, &f.pressure_factor, &f.energy_sum,
                      &f.conduct})
     memory->destroy(*a);
   memory->destroy(f.dcurl);
@@ -307,7 +307,7 @@ void PairSPHAstro::grow_fields()
   Fields &f = *fields_;
   const bool geo = o.pressure_geometric || o.pressure_energy;
   if (atom->nmax <= nmax_ && (!curl_on_ || f.curlv) && (!o.signal_viscosity() || f.vsigmax) &&
-      (!geo || f.pgeo) && (!o.reconstruction() || f.vgrad) &&
+      (!geo || f.pressure_factor) && (!(o.pressure_energy && gradh()) || f.energy_sum) && (!o.reconstruction() || f.vgrad) &&
       (!o.artificial_conductivity() || f.condrate) && (!o.pressure_energy || f.pe_gradh) &&
       (!o.physical_conduction() || f.conduct) && (!o.balsara || f.balsara))
     return;
@@ -335,7 +335,8 @@ void PairSPHAstro::grow_fields()
   make2(f.vgrad, o.reconstruction(), VGRAD_DATA, "pair:sph/astro:vgrad");
   make(f.condrate, o.artificial_conductivity(), "pair:sph/astro:condrate");
   make(f.pe_gradh, o.pressure_energy, "pair:sph/astro:pe_gradh");
-  make(f.pgeo, geo, "pair:sph/astro:pgeo");
+  make(f.pressure_factor, geo, "pair:sph/astro:pressure_factor");
+  make(f.energy_sum, o.pressure_energy && gradh(), "pair:sph/astro:energy_sum");
   make(f.conduct, o.physical_conduction(), "pair:sph/astro:conduct");
 }
 
@@ -394,7 +395,7 @@ void PairSPHAstro::compute(int eflag, int vflag)
   // pressure-energy with grad-h terms: div v and curl v above are those of the mass density
   // and Omega; now rho_i = P_i / ((gamma-1) u_i) and the EOS again (P = (gamma-1) rho u)
   if (gradh() && opt_->pressure_energy) {
-    pressure_energy_density(fields_->pgeo);
+    pressure_energy_density(fields_->energy_sum);
     equation_of_state();
   }
   forward_state();
@@ -481,9 +482,9 @@ void PairSPHAstro::force_stage(PassContext &ctx)
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
   if (o.pressure_geometric)    // g = sqrt(P)/rho of owned and ghost atoms
-    for (int i = 0; i < nall; i++) f.pgeo[i] = pressure_geometric_factor(f.pressure[i], ctx.rho[i]);
+    for (int i = 0; i < nall; i++) f.pressure_factor[i] = pressure_geometric_factor(f.pressure[i], ctx.rho[i]);
   else if (o.pressure_energy)    // (gamma-1) u = P/rho of owned and ghost atoms
-    for (int i = 0; i < nall; i++) f.pgeo[i] = f.pressure[i] / ctx.rho[i];
+    for (int i = 0; i < nall; i++) f.pressure_factor[i] = f.pressure[i] / ctx.rho[i];
 
   ForceSettings s;
   s.pressure = o.pressure_energy  ? PressureForm::PRESSURE_ENERGY
@@ -956,7 +957,8 @@ double PairSPHAstro::memory_usage()
 {
   const Fields &f = *fields_;
   int arrays = 6;
-  for (const double *a : {f.curlv, f.balsara, f.vsigmax, f.condrate, f.pe_gradh, f.pgeo, f.conduct})
+  for (const double *a : {f.curlv, f.balsara, f.vsigmax, f.condrate, f.pe_gradh, f.pressure_factor, f.energy_sum,
+                           f.conduct})
     if (a) arrays++;
   if (f.dcurl) arrays += 4;
   if (f.vgsum) arrays += VGRAD_SUMS + VGRAD_DATA;

@@ -207,7 +207,7 @@ namespace {
         follows_rho = false;
       }
       if (pe) {    // P_i / (gamma-1) and C_i = h_i dP_i/dh_i / (d rho_i Omega_i)
-        f.pgeo[i] = esum;
+        f.energy_sum[i] = esum;
         f.pe_gradh[i] = follows_rho ? gm1 * hi * desum / (DIM * rhoi * f.omega[i]) : 0.0;
       }
     }

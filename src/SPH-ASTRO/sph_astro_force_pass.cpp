@@ -41,12 +41,12 @@ namespace {
       q.h = ctx.p.h[i];
       switch (s.pressure) {
         case PressureForm::GEOMETRIC:
-          q.prho = f.pgeo[i];
+          q.prho = f.pressure_factor[i];
           q.e = q.C = 0.0;
           break;
         case PressureForm::PRESSURE_ENERGY:
-          q.prho = f.pgeo[i] / q.P;
-          q.e = f.pgeo[i];
+          q.prho = f.pressure_factor[i] / q.P;
+          q.e = f.pressure_factor[i];
           q.C = s.gradh ? f.pe_gradh[i] : 0.0;
           break;
         default:
@@ -132,7 +132,7 @@ void finish_force(const PassContext &ctx, const ForceSettings &s)
   const int nlocal = ctx.p.nlocal;
   const bool pe = s.pressure == PressureForm::PRESSURE_ENERGY;
   if (pe)
-    for (int i = 0; i < nlocal; i++) f.vdotgradw[i] /= f.pgeo[i];
+    for (int i = 0; i < nlocal; i++) f.vdotgradw[i] /= f.pressure_factor[i];
   // (the pressure-energy grad-h terms are in C, not in Omega)
   const bool omega = s.gradh && !pe;
   for (int i = 0; i < nlocal; i++)

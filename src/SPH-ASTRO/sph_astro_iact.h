@@ -195,7 +195,7 @@ struct ForceContribution {
 //   dv_i/dt += -m_j (P_i/(Omega_i rho_i^2) dW_i + P_j/(Omega_j rho_j^2) dW_j + Pi_ij dWbar) r_ij
 //   du_i/dt += 1/2 m_j Pi_ij v_ij . r_ij dWbar    (+ P dV, summed through vgw_i)
 // pressure geometric: 2 g_i g_j dW replaces the pressure term, its P dV work g_i g_j m_j v_ij .
-// grad W goes to both (Hernquist & Katz 1989); pressure-energy (Hopkins 2013, eqs. 16-18):
+// grad W goes to both; pressure-energy (Hopkins 2013, eqs. 16-18):
 //   e_i (e_j - C_i)/P_i dW_i + e_j (e_i - C_j)/P_j dW_j.
 // Viscosity Pi_ij: classic (Monaghan 1992, eq. 4.2) or signal (Monaghan 1997), with the
 // Balsara factor or on reconstructed velocities (sph_astro_reconstruction.h: only pairs that

@@ -1,6 +1,11 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   SPH-ASTRO: the dissipative terms of one particle pair
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
 ------------------------------------------------------------------------- */
+
+// The dissipative and pressure terms of one particle pair, and the viscosity switches
 
 // Plain functions of the pair's numbers, shared by the pair loops (fixed/dh-dt h with the
 // mean h_ij, and variable h with grad-h terms) and usable in unit tests without LAMMPS.
@@ -12,11 +17,10 @@
 
 namespace SPHAstro {
 
-// Geometric-mean pressure term (seed 000, "alternative ways to force anti-symmetry"):
+// Geometric-mean pressure term (an alternative symmetrisation of the pressure force):
 //   1/2 (P_i/rho_i^2 + P_j/rho_j^2)  ->  sqrt(P_i P_j)/(rho_i rho_j)
 // so the pair term of the momentum equation is 2 sqrt(P_i P_j)/(rho_i rho_j) = 2 g_i g_j with
-// g = sqrt(P)/rho per particle; the energy equation in the same form (seed 004 eqs. 41-42
-// pair the energy equation with the force in this way) gives both partners the P dV work
+// g = sqrt(P)/rho per particle; the energy equation in the same form (Monaghan 1992 pairs the energy equation with the force in this way) gives both partners the P dV work
 //   du_i/dt = sum_j m_j g_i g_j v_ij . grad_i W_ij,
 // so m_i du_i + m_j du_j = -(work of the pair force): the total energy is conserved.
 inline double pressure_geometric_factor(double P, double rho)
@@ -29,18 +33,17 @@ inline double pressure_geometric_term(double gi, double gj)
   return 2.0 * gi * gj;
 }
 
-// Continuity equation in the form that vanishes for uniform motion (seed 004 eq. 33; seed 000
-// "density"): drho_i/dt = sum_j m_j v_ij . grad_i W_ij, with grad_i W_ij = r_ij (dW/dr)/r;
+// Continuity equation in the form that vanishes for uniform motion (Monaghan 1992, eq. 2.12): drho_i/dt = sum_j m_j v_ij . grad_i W_ij, with grad_i W_ij = r_ij (dW/dr)/r;
 // the pair's contribution for particle i, vdotr = v_ij . r_ij, dwdr_r = (dW/dr)/r
 inline double continuity_rate(double mj, double vdotr, double dwdr_r)
 {
   return mj * vdotr * dwdr_r;
 }
 
-// Classic artificial viscosity (Monaghan 1992; seed 000 "standard formulation"):
+// Classic artificial viscosity (Monaghan & Gingold 1983; Monaghan 1992, eq. 4.2):
 //   Pi_ij = (-alpha c_ij mu_ij + beta mu_ij^2) / rho_ij  for v_ij . r_ij < 0, else 0
 //   mu_ij = h_ij v_ij . r_ij / (r_ij^2 + eps h_ij^2), c_ij, rho_ij the pair means
-// With the Balsara (1995) shear limiter mu_ij is multiplied by shear = (f_i + f_j)/2 (seed 000).
+// With the Balsara (1995) shear limiter mu_ij is multiplied by shear = (f_i + f_j)/2.
 inline double viscosity_classic(double vdotr, double r2, double hij, double alpha, double beta,
                                 double eps, double cbar, double rhobar, double shear = 1.0)
 {
@@ -68,8 +71,8 @@ inline double viscosity_signal(double vdotr, double r, double alpha, double beta
   return -0.5 * shear * alpha * signal_velocity(w, ci, cj, beta) * w / rhobar;
 }
 
-// Balsara factor f_i = |div v| / (|div v| + |curl v| + 0.0001 c / h)   (seed 000, "Balsara
-// viscosity"): 1 in pure compression, 0 in pure shear
+// Balsara factor f_i = |div v| / (|div v| + |curl v| + 0.0001 c / h)   (Balsara 1995,
+// J. Comput. Phys. 121, 357): 1 in pure compression, 0 in pure shear
 inline double balsara_factor(double divv, double curlv, double cs, double h)
 {
   const double d = std::fabs(divv);

@@ -46,7 +46,10 @@ struct Fields {
   double **vgrad = nullptr;        // reconstruction: symmetric grad v and spacing Delta
   double *condrate = nullptr;      // artificial conductivity: sum_j m_j k_ij |dW/dr| r
   double *pe_gradh = nullptr;      // pressure-energy with grad-h terms: C_i
-  double *pgeo = nullptr;          // pressure geometric: sqrt(P)/rho; pressure-energy: P/rho
+  // the per-particle factor of the pressure term: sqrt(P)/rho (pressure geometric) or
+  // e = (gamma-1) u = P/rho (pressure-energy)
+  double *pressure_factor = nullptr;
+  double *energy_sum = nullptr;    // pressure-energy with grad-h: sum_j m_j u_j W(h_i)
   double *conduct = nullptr;       // physical heat conduction: du/dt of this step
 };
 
