@@ -18,6 +18,7 @@
 
 #include "pair_sph_astro.h"
 
+#include "sph_astro_comm_table.h"
 #include "sph_astro_neighbour_lists.h"
 #include "sph_astro_options.h"
 #include "sph_astro_pair_coeff.h"
@@ -52,7 +53,8 @@ PairSPHAstro::PairSPHAstro(LAMMPS *lmp) :
     h_tolerance_(1e-4), h_margin_(1.0), h_max_iterations_(30), entropy_(false), switch_(false),
     curl_on_(false), entropy_init_pending_(false), density_init_pending_(false),
     alpha_atom_(nullptr), hcap_type_(nullptr), kernel_radius_(2.0), h_failures_(0), prune_atom_fallbacks_(0),
-    counts_step_(-1), computed_step_(-1), computed_nlocal_(-1), nmax_(0), ncomm_fields_(0)
+    counts_step_(-1), computed_step_(-1), computed_nlocal_(-1), nmax_(0),
+    comm_table_(new CommTable())
 {
   single_enable = 0;
   restartinfo = 1;
@@ -88,6 +90,7 @@ PairSPHAstro::~PairSPHAstro()
   delete state_;
   delete entropy_index_;
   delete continuity_index_;
+  delete comm_table_;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -654,87 +657,36 @@ bool PairSPHAstro::ghosts_need_u() const
   return o.eos.uses_energy() && (o.conductivity > 0.0 || o.conduction > 0.0) && !o.pressure_energy;
 }
 
-// the fields of the table that exist (null arrays are left out)
-void PairSPHAstro::comm_table(std::initializer_list<CommField> fields)
-{
-  ncomm_fields_ = 0;
-  for (const CommField &field : fields)
-    if (field.scalar || field.vector) comm_fields_[ncomm_fields_++] = field;
-}
-
 void PairSPHAstro::forward(std::initializer_list<CommField> fields)
 {
-  comm_table(fields);
-  int size = 0;
-  for (int k = 0; k < ncomm_fields_; k++) size += comm_fields_[k].ncol;
+  const int size = comm_table_->set(fields);
   if (size) comm->forward_comm(this, size);
 }
 
 void PairSPHAstro::reverse(std::initializer_list<CommField> fields)
 {
-  comm_table(fields);
-  int size = 0;
-  for (int k = 0; k < ncomm_fields_; k++) size += comm_fields_[k].ncol;
+  const int size = comm_table_->set(fields);
   if (size) comm->reverse_comm(this, size);
 }
 
 int PairSPHAstro::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, int * /*pbc*/)
 {
-  int m = 0;
-  for (int k = 0; k < n; k++) {
-    const int j = list[k];
-    for (int c = 0; c < ncomm_fields_; c++) {
-      const CommField &field = comm_fields_[c];
-      if (field.scalar)
-        buf[m++] = field.scalar[j];
-      else
-        for (int d = 0; d < field.ncol; d++) buf[m++] = field.vector[j][d];
-    }
-  }
-  return m;
+  return comm_table_->pack(n, list, buf);
 }
 
 void PairSPHAstro::unpack_forward_comm(int n, int first, double *buf)
 {
-  int m = 0;
-  for (int i = first; i < first + n; i++)
-    for (int c = 0; c < ncomm_fields_; c++) {
-      const CommField &field = comm_fields_[c];
-      if (field.scalar)
-        field.scalar[i] = buf[m++];
-      else
-        for (int d = 0; d < field.ncol; d++) field.vector[i][d] = buf[m++];
-    }
+  comm_table_->unpack_range(first, n, buf);
 }
 
 int PairSPHAstro::pack_reverse_comm(int n, int first, double *buf)
 {
-  int m = 0;
-  for (int i = first; i < first + n; i++)
-    for (int c = 0; c < ncomm_fields_; c++) {
-      const CommField &field = comm_fields_[c];
-      if (field.scalar)
-        buf[m++] = field.scalar[i];
-      else
-        for (int d = 0; d < field.ncol; d++) buf[m++] = field.vector[i][d];
-    }
-  return m;
+  return comm_table_->pack_range(first, n, buf);
 }
 
 void PairSPHAstro::unpack_reverse_comm(int n, int *list, double *buf)
 {
-  int m = 0;
-  for (int k = 0; k < n; k++) {
-    const int j = list[k];
-    for (int c = 0; c < ncomm_fields_; c++) {
-      const CommField &field = comm_fields_[c];
-      if (field.scalar) {
-        field.scalar[j] = field.max ? MAX(field.scalar[j], buf[m]) : field.scalar[j] + buf[m];
-        m++;
-      } else
-        for (int d = 0; d < field.ncol; d++) field.vector[j][d] += buf[m++];
-    }
-  }
+  comm_table_->accumulate(n, list, buf);
 }
 
 /* ---------------------------------------------------------------------- */

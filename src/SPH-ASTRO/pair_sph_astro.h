@@ -28,6 +28,8 @@ struct StateIndex;
 struct EntropyIndex;
 struct ContinuityIndex;
 class NeighbourLists;
+class CommTable;
+struct CommField;
 enum class KernelType;
 }    // namespace SPHAstro
 
@@ -155,19 +157,10 @@ class PairSPHAstro : public Pair {
   int computed_nlocal_;
   int nmax_;
 
-  // communication: the arrays a stage sends (forward) or sums (reverse), one table
-  struct CommField {
-    double *scalar;
-    double **vector;
-    int ncol;
-    bool max;    // reverse: keep the larger value instead of the sum
-  };
-  static constexpr int MAX_COMM_FIELDS = 16;
-  CommField comm_fields_[MAX_COMM_FIELDS];
-  int ncomm_fields_;
-  void comm_table(std::initializer_list<CommField> fields);
-  void forward(std::initializer_list<CommField> fields);
-  void reverse(std::initializer_list<CommField> fields);
+  // communication: the arrays a stage sends (forward) or sums (reverse)
+  SPHAstro::CommTable *comm_table_;
+  void forward(std::initializer_list<SPHAstro::CommField> fields);
+  void reverse(std::initializer_list<SPHAstro::CommField> fields);
   void forward_state();
 
   void allocate();

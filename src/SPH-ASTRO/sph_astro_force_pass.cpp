@@ -31,7 +31,7 @@ namespace {
       ForceParticle pi;
       double fx, fy, fz, vgw, heat, vsig, crate;
     };
-    void load(int i, ForceParticle &q) const
+    [[gnu::always_inline]] void load(int i, ForceParticle &q) const
     {
       const double rho = ctx.rho[i];
       q.m = ctx.p.mass_of(i);
@@ -66,8 +66,8 @@ namespace {
       load(i, own.pi);
       own.fx = own.fy = own.fz = own.vgw = own.heat = own.vsig = own.crate = 0.0;
     }
-    void pair(int i, int j, double dx, double dy, double dz, const PairGradient &g, Own &own,
-              bool update_j) const
+    [[gnu::always_inline]] void pair(int i, int j, double dx, double dy, double dz,
+                                     const PairGradient &g, Own &own, bool update_j) const
     {
       ForceParticle pj;
       load(j, pj);

@@ -45,9 +45,9 @@ template <class KERNEL, int DIM> struct PairKernel {
   {
     return sigma * inv_h_pow_dim<DIM>(hinv) * K::w(r * hinv);
   }
-  double dW_over_r(double r, double hinv) const
+  double dW_over_r(double r, double rinv, double hinv) const
   {
-    return sigma * inv_h_pow_dim<DIM>(hinv) * hinv * K::dw(r * hinv) / r;
+    return sigma * inv_h_pow_dim<DIM>(hinv) * hinv * K::dw(r * hinv) * rinv;
   }
 };
 
@@ -96,15 +96,16 @@ inline bool pair_kernel_gradient(const PairKernel<KERNEL, DIM> &kern, const Kern
     const double support2j = kern.R2 * hj * hj;
     if (r2 >= ki.support2 && r2 >= support2j) return false;
     g.r = std::sqrt(r2);
-    g.dwi = r2 < ki.support2 ? kern.dW_over_r(g.r, ki.hinv) : 0.0;
-    g.dwj = r2 < support2j ? kern.dW_over_r(g.r, 1.0 / hj) : 0.0;
+    const double rinv = 1.0 / g.r;
+    g.dwi = r2 < ki.support2 ? kern.dW_over_r(g.r, rinv, ki.hinv) : 0.0;
+    g.dwj = r2 < support2j ? kern.dW_over_r(g.r, rinv, 1.0 / hj) : 0.0;
     if (average) g.dwi = g.dwj = g.mean();
     return true;
   }
   const double hij = 0.5 * (ki.h + hj);
   if (r2 >= kern.R2 * hij * hij) return false;
   g.r = std::sqrt(r2);
-  g.dwi = g.dwj = kern.dW_over_r(g.r, 1.0 / hij);
+  g.dwi = g.dwj = kern.dW_over_r(g.r, 1.0 / g.r, 1.0 / hij);
   return true;
 }
 
@@ -203,7 +204,7 @@ struct ForceContribution {
 // Artificial conductivity (Price 2008, eq. 28): du_i/dt += -m_j k_ij (u_i - u_j) |dWbar| r,
 // k_ij = alpha_u sqrt(|P_i - P_j|/rho_ij)/rho_ij. Every term is antisymmetric in force or
 // heat flux, so momentum and energy are conserved pair by pair.
-inline void iact_force(const ForceSettings &s, const ForceParticle &pi, const ForceParticle &pj,
+[[gnu::always_inline]] inline void iact_force(const ForceSettings &s, const ForceParticle &pi, const ForceParticle &pj,
                        double dx, double dy, double dz, const PairGradient &g,
                        ForceContribution &out)
 {

@@ -1,0 +1,105 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
+// What one communication stage of pair sph/astro sends: a table of per-atom arrays (scalar or
+// ncol columns). Forward: owned -> ghost copies; reverse: the ghosts' parts are summed into
+// the owners (or the larger value kept: max). Null arrays are left out, so a stage names every
+// array it may send and the scene's options decide which exist.
+
+#ifndef LMP_SPH_ASTRO_COMM_TABLE_H
+#define LMP_SPH_ASTRO_COMM_TABLE_H
+
+#include <initializer_list>
+
+namespace SPHAstro {
+
+// one array of a stage
+struct CommField {
+  double *scalar;
+  double **vector;
+  int ncol;
+  bool max;    // reverse: keep the larger value instead of the sum
+};
+
+class CommTable {
+ public:
+  using Field = CommField;
+  static constexpr int MAX_FIELDS = 16;
+
+  // the fields of the next stage; returns the values per atom it sends
+  int set(std::initializer_list<Field> fields)
+  {
+    n_ = 0;
+    size_ = 0;
+    for (const Field &field : fields)
+      if ((field.scalar || field.vector) && n_ < MAX_FIELDS) {
+        fields_[n_++] = field;
+        size_ += field.ncol;
+      }
+    return size_;
+  }
+
+  int pack(int n, const int *list, double *buf) const
+  {
+    int m = 0;
+    for (int k = 0; k < n; k++) m = pack_one(list[k], buf, m);
+    return m;
+  }
+  int pack_range(int first, int n, double *buf) const
+  {
+    int m = 0;
+    for (int i = first; i < first + n; i++) m = pack_one(i, buf, m);
+    return m;
+  }
+  void unpack_range(int first, int n, const double *buf) const
+  {
+    int m = 0;
+    for (int i = first; i < first + n; i++)
+      for (int c = 0; c < n_; c++) {
+        const Field &f = fields_[c];
+        if (f.scalar)
+          f.scalar[i] = buf[m++];
+        else
+          for (int d = 0; d < f.ncol; d++) f.vector[i][d] = buf[m++];
+      }
+  }
+  void accumulate(int n, const int *list, const double *buf) const
+  {
+    int m = 0;
+    for (int k = 0; k < n; k++) {
+      const int j = list[k];
+      for (int c = 0; c < n_; c++) {
+        const Field &f = fields_[c];
+        if (f.scalar) {
+          f.scalar[j] = f.max ? (buf[m] > f.scalar[j] ? buf[m] : f.scalar[j]) : f.scalar[j] + buf[m];
+          m++;
+        } else
+          for (int d = 0; d < f.ncol; d++) f.vector[j][d] += buf[m++];
+      }
+    }
+  }
+
+ private:
+  Field fields_[MAX_FIELDS];
+  int n_ = 0, size_ = 0;
+
+  int pack_one(int i, double *buf, int m) const
+  {
+    for (int c = 0; c < n_; c++) {
+      const Field &f = fields_[c];
+      if (f.scalar)
+        buf[m++] = f.scalar[i];
+      else
+        for (int d = 0; d < f.ncol; d++) buf[m++] = f.vector[i][d];
+    }
+    return m;
+  }
+};
+
+}    // namespace SPHAstro
+
+#endif
