@@ -24,8 +24,8 @@ energy and of L_z, and the mean alpha of a viscosity switch.
 --png writes the v_phi(r) profile (particles, binned mean, exact) with P(r) and alpha(r);
 --log-png the energy, L_z and mean-alpha time series from the log; --series (a dump with
 several frames, ``-var every 0.1`` in in.gresho) adds L1(v_phi) against time to --log-png.
-``--periodic`` is accepted and ignored (the box is always periodic), so the script works with
-unittest/run_scene_check.sh.
+``--periodic`` is accepted and ignored (the box is always periodic), so the script takes the
+same arguments as examples/sod/analyse.py.
 """
 
 import argparse
