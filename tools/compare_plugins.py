@@ -28,7 +28,7 @@ ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)),
 
 SCENES = {
     # uniform periodic box, fixed h, classic viscosity: the pair loop alone
-    "benchmark": ("examples/benchmark/in.benchmark", ["-var", "ncell", "18", "-var", "steps", "30"]),
+    "benchmark": ("examples/benchmark/in.benchmark", ["-var", "ncell", "18", "-var", "steps", "100"]),
     # the flagship: Sod, variable h (iterate), M4, classic viscosity
     "sod": ("examples/sod/in.sod", []),
     # Sod with the signal viscosity, the Cullen-Dehnen switch and conductivity

@@ -41,8 +41,8 @@ Pair random_pair(std::mt19937 &gen, bool approaching, PressureForm form)
     q->P = u(gen);
     q->c = u(gen);
     q->h = 0.5 * u(gen) + 0.5;
-    q->e = u(gen);
-    q->C = 0.1 * s(gen);
+    const double e = u(gen);
+    q->C = form == PressureForm::PRESSURE_ENERGY ? 0.1 * s(gen) : 0.0;
     q->alpha = u(gen);
     q->shear = 0.5 * u(gen);
     q->u = u(gen);
@@ -52,8 +52,12 @@ Pair random_pair(std::mt19937 &gen, bool approaching, PressureForm form)
     // the per-particle factor of each pressure form: P/(Omega rho^2), sqrt(P)/rho, e/P
     const double omega = 0.8 + 0.3 * u(gen);
     q->prho = form == PressureForm::GEOMETRIC ? pressure_geometric_factor(q->P, q->rho)
-        : form == PressureForm::PRESSURE_ENERGY ? q->e / q->P
+        : form == PressureForm::PRESSURE_ENERGY ? e / q->P
                                                 : q->P / (omega * q->rho * q->rho);
+    q->b = form == PressureForm::GEOMETRIC ? q->prho
+        : form == PressureForm::PRESSURE_ENERGY ? e
+                                                : 1.0;
+    q->w = form == PressureForm::PRESSURE_ENERGY ? e : 1.0;
   }
   for (int k = 0; k < VGRAD_DATA; k++) {
     p.vgrad_i[k] = s(gen);
@@ -205,7 +209,8 @@ TEST(PairInteraction, GeometricPressureTermAndWork)
   p.g.dwj = p.g.dwi;
   ForceContribution c;
   iact_force(s, p.i, p.j, p.dx, p.dy, p.dz, p.g, c);
-  EXPECT_NEAR(c.fpair, -p.i.m * p.j.m * 2.0 * p.i.prho * p.j.prho * p.g.dwi, 1e-14);
+  EXPECT_NEAR(c.fpair, -p.i.m * p.j.m * pressure_geometric_term(p.i.prho, p.j.prho) * p.g.dwi,
+              1e-14);
   const double vdotr =
       (p.i.vx - p.j.vx) * p.dx + (p.i.vy - p.j.vy) * p.dy + (p.i.vz - p.j.vz) * p.dz;
   EXPECT_NEAR(c.heat_i, p.j.m * p.i.prho * p.j.prho * vdotr * p.g.dwi, 1e-14);

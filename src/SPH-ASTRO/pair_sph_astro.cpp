@@ -72,7 +72,7 @@ PairSPHAstro::~PairSPHAstro()
   if (copymode) return;
   Fields &f = *fields_;
   for (double **a : {&f.pressure, &f.soundspeed, &f.vdotgradw, &f.divv, &f.nneigh, &f.omega,
-                     &f.curlv, &f.balsara, &f.vsigmax, &f.condrate, &f.pe_gradh, &f.pressure_factor, &f.energy_sum,
+                     &f.curlv, &f.balsara, &f.vsigmax, &f.condrate, &f.pe_gradh, &f.pressure_factor, &f.energy_sum, &f.prho,
                      &f.conduct})
     memory->destroy(*a);
   memory->destroy(f.dcurl);
@@ -329,6 +329,7 @@ void PairSPHAstro::grow_fields()
   make(f.vdotgradw, true, "pair:sph/astro:vdotgradw");
   make(f.divv, true, "pair:sph/astro:divv");
   make(f.nneigh, true, "pair:sph/astro:nneigh");
+  make(f.prho, true, "pair:sph/astro:prho");
   make(f.omega, true, "pair:sph/astro:omega");
   make2(f.dcurl, curl_on_, 4, "pair:sph/astro:dcurl");
   make(f.curlv, curl_on_, "pair:sph/astro:curlv");
@@ -908,7 +909,7 @@ void *PairSPHAstro::extract_peratom(const char *name, int &ncol)
 double PairSPHAstro::memory_usage()
 {
   const Fields &f = *fields_;
-  int arrays = 6;
+  int arrays = 7;
   for (const double *a : {f.curlv, f.balsara, f.vsigmax, f.condrate, f.pe_gradh, f.pressure_factor, f.energy_sum,
                            f.conduct})
     if (a) arrays++;

@@ -43,43 +43,60 @@ class CommTable {
     return size_;
   }
 
+  // the buffer holds the fields one after the other (each for all n atoms)
   int pack(int n, const int *list, double *buf) const
   {
     int m = 0;
-    for (int k = 0; k < n; k++) m = pack_one(list[k], buf, m);
+    for (int c = 0; c < n_; c++) {
+      const Field &f = fields_[c];
+      if (f.scalar)
+        for (int k = 0; k < n; k++) buf[m++] = f.scalar[list[k]];
+      else
+        for (int k = 0; k < n; k++)
+          for (int d = 0; d < f.ncol; d++) buf[m++] = f.vector[list[k]][d];
+    }
     return m;
   }
   int pack_range(int first, int n, double *buf) const
   {
     int m = 0;
-    for (int i = first; i < first + n; i++) m = pack_one(i, buf, m);
+    for (int c = 0; c < n_; c++) {
+      const Field &f = fields_[c];
+      if (f.scalar)
+        for (int i = first; i < first + n; i++) buf[m++] = f.scalar[i];
+      else
+        for (int i = first; i < first + n; i++)
+          for (int d = 0; d < f.ncol; d++) buf[m++] = f.vector[i][d];
+    }
     return m;
   }
   void unpack_range(int first, int n, const double *buf) const
   {
     int m = 0;
-    for (int i = first; i < first + n; i++)
-      for (int c = 0; c < n_; c++) {
-        const Field &f = fields_[c];
-        if (f.scalar)
-          f.scalar[i] = buf[m++];
-        else
+    for (int c = 0; c < n_; c++) {
+      const Field &f = fields_[c];
+      if (f.scalar)
+        for (int i = first; i < first + n; i++) f.scalar[i] = buf[m++];
+      else
+        for (int i = first; i < first + n; i++)
           for (int d = 0; d < f.ncol; d++) f.vector[i][d] = buf[m++];
-      }
+    }
   }
   void accumulate(int n, const int *list, const double *buf) const
   {
     int m = 0;
-    for (int k = 0; k < n; k++) {
-      const int j = list[k];
-      for (int c = 0; c < n_; c++) {
-        const Field &f = fields_[c];
-        if (f.scalar) {
-          f.scalar[j] = f.max ? (buf[m] > f.scalar[j] ? buf[m] : f.scalar[j]) : f.scalar[j] + buf[m];
-          m++;
-        } else
-          for (int d = 0; d < f.ncol; d++) f.vector[j][d] += buf[m++];
-      }
+    for (int c = 0; c < n_; c++) {
+      const Field &f = fields_[c];
+      if (f.scalar && f.max)
+        for (int k = 0; k < n; k++, m++) {
+          double &value = f.scalar[list[k]];
+          if (buf[m] > value) value = buf[m];
+        }
+      else if (f.scalar)
+        for (int k = 0; k < n; k++) f.scalar[list[k]] += buf[m++];
+      else
+        for (int k = 0; k < n; k++)
+          for (int d = 0; d < f.ncol; d++) f.vector[list[k]][d] += buf[m++];
     }
   }
 
@@ -87,17 +104,6 @@ class CommTable {
   Field fields_[MAX_FIELDS];
   int n_ = 0, size_ = 0;
 
-  int pack_one(int i, double *buf, int m) const
-  {
-    for (int c = 0; c < n_; c++) {
-      const Field &f = fields_[c];
-      if (f.scalar)
-        buf[m++] = f.scalar[i];
-      else
-        for (int d = 0; d < f.ncol; d++) buf[m++] = f.vector[i][d];
-    }
-    return m;
-  }
 };
 
 }    // namespace SPHAstro

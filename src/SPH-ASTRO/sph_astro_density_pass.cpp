@@ -29,8 +29,8 @@ using namespace LAMMPS_NS;
 namespace SPHAstro {
 namespace {
 
-  // summation over the half list: m_j W_ij to i, m_i W_ij to j
-  struct DensityAdapter {
+  // summation over the half list: m_j W_ij to i, m_i W_ij to j (PE: weights m u)
+  template <bool PE> struct DensityAdapter {
     static constexpr KernelUse use = KernelUse::VALUE;
     const Particles &p;
     const double *u;    // weights m u (pressure-energy), else null
@@ -40,7 +40,7 @@ namespace {
     struct Own {
       double weight, rho, n;
     };
-    double weight(int i) const { return p.mass_of(i) * (u ? u[i] : 1.0); }
+    double weight(int i) const { return PE ? p.mass_of(i) * u[i] : p.mass_of(i); }
     void begin(int i, Own &own) const
     {
       own.weight = weight(i);
@@ -80,7 +80,8 @@ namespace {
     void end(int i, Own &own) const { nneigh[i] += own.n; }
   };
 
-  template <class KERNEL, int DIM>
+  // SUMS (VelocitySums) and PE compiled in: this loop runs several times per particle
+  template <class KERNEL, int DIM, int SUMS, bool PE>
   void gradh_loop(const PassContext &ctx, const GradhSettings &s, GradhStatistics &stats)
   {
     using K = Kernel<KERNEL, DIM>;
@@ -90,9 +91,9 @@ namespace {
     double *h = const_cast<double *>(p.h);
     double **vest = ctx.vest;
     const double *uest = ctx.uest;
-    const bool curl = s.sums == VelocitySums::CURL;
-    const bool gradient = s.sums == VelocitySums::GRADIENT;
-    const bool pe = s.pressure_energy;
+    constexpr bool curl = SUMS == static_cast<int>(VelocitySums::CURL);
+    constexpr bool gradient = SUMS == static_cast<int>(VelocitySums::GRADIENT);
+    constexpr bool pe = PE;
     const double sigma = K::sigma();
     const double R2 = K::radius * K::radius;
     const double w0 = K::w(0.0);
@@ -128,7 +129,7 @@ namespace {
         const double norm = sigma * inv_h_pow_dim<DIM>(hinv);
         GradhSums mass, energy;
         mass.add(mi, w0, 0.0, 0.0, DIM);    // self term
-        if (pe) energy.add(mi * uest[i], w0, 0.0, 0.0, DIM);
+        if constexpr (pe) energy.add(mi * uest[i], w0, 0.0, 0.0, DIM);
         double vsum[4] = {0.0, 0.0, 0.0, 0.0};
         double gsum[VGRAD_SUMS] = {};
         ni = 0.0;
@@ -138,9 +139,10 @@ namespace {
           const double mj = p.mass_of(j);
           const double w = K::w(q), dw = K::dw(q);
           mass.add(mj, w, dw, q, DIM);
-          if (pe) energy.add(mj * uest[j], w, dw, q, DIM);
+          if constexpr (pe) energy.add(mj * uest[j], w, dw, q, DIM);
           ni += 1.0;
-          if (r2 > 0.0 && (curl || gradient)) {
+          if constexpr (curl || gradient) {
+            if (r2 == 0.0) return;
             const double dvx = vest[i][0] - vest[j][0], dvy = vest[i][1] - vest[j][1],
                          dvz = vest[i][2] - vest[j][2];
             if (curl) {
@@ -226,9 +228,14 @@ void density_summation(const PassContext &ctx, bool two_h, bool weight_u)
   with_variant(ctx.kernel, ctx.dim, two_h, [&](auto v) {
     using V = decltype(v);
     using K = Kernel<typename V::kernel, V::dim>;
-    DensityAdapter act{ctx.p, weight_u ? ctx.uest : nullptr, ctx.rho_sum, ctx.f->nneigh,
-                       K::sigma() * K::w(0.0), V::dim};
-    pair_loop<typename V::kernel, V::dim, V::two_h>(ctx.half, ctx.p, ctx.newton, false, act);
+    const double w0 = K::sigma() * K::w(0.0);
+    if (weight_u) {
+      DensityAdapter<true> act{ctx.p, ctx.uest, ctx.rho_sum, ctx.f->nneigh, w0, V::dim};
+      pair_loop<typename V::kernel, V::dim, V::two_h>(ctx.half, ctx.p, ctx.newton, false, act);
+    } else {
+      DensityAdapter<false> act{ctx.p, nullptr, ctx.rho_sum, ctx.f->nneigh, w0, V::dim};
+      pair_loop<typename V::kernel, V::dim, V::two_h>(ctx.half, ctx.p, ctx.newton, false, act);
+    }
   });
 }
 
@@ -248,8 +255,24 @@ void density_gradh(const PassContext &ctx, const GradhSettings &s, GradhStatisti
 {
   stats = GradhStatistics();
   with_variant(ctx.kernel, ctx.dim, false, [&](auto v) {
-    using V = decltype(v);
-    gradh_loop<typename V::kernel, V::dim>(ctx, s, stats);
+    using K = typename decltype(v)::kernel;
+    constexpr int D = decltype(v)::dim;
+    constexpr int NONE = static_cast<int>(VelocitySums::NONE);
+    constexpr int CURL = static_cast<int>(VelocitySums::CURL);
+    constexpr int GRADIENT = static_cast<int>(VelocitySums::GRADIENT);
+    const bool pe = s.pressure_energy;
+    switch (s.sums) {
+      case VelocitySums::NONE:
+        pe ? gradh_loop<K, D, NONE, true>(ctx, s, stats) : gradh_loop<K, D, NONE, false>(ctx, s, stats);
+        break;
+      case VelocitySums::CURL:
+        pe ? gradh_loop<K, D, CURL, true>(ctx, s, stats) : gradh_loop<K, D, CURL, false>(ctx, s, stats);
+        break;
+      case VelocitySums::GRADIENT:
+        pe ? gradh_loop<K, D, GRADIENT, true>(ctx, s, stats)
+           : gradh_loop<K, D, GRADIENT, false>(ctx, s, stats);
+        break;
+    }
   });
 }
 

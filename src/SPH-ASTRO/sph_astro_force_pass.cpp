@@ -20,10 +20,11 @@
 namespace SPHAstro {
 namespace {
 
-  struct ForceAdapter {
+  // VISC, EXTRAS: the variant of iact_force (sph_astro_iact.h) this scene needs
+  template <int VISC, bool EXTRAS> struct ForceAdapter {
     static constexpr KernelUse use = KernelUse::GRADIENT;
     const PassContext &ctx;
-    const ForceSettings &s;
+    const ForceSettings s;    // a copy: no store to a double array can change it
     const Fields &f;
     double **force;
     double *dudt;
@@ -31,32 +32,32 @@ namespace {
       ForceParticle pi;
       double fx, fy, fz, vgw, heat, vsig, crate;
     };
+    // per-particle factors of the pressure term (ForceParticle); null: 1 (b, w) or 0 (C)
+    const double *prho, *b, *w, *C;
     [[gnu::always_inline]] void load(int i, ForceParticle &q) const
     {
-      const double rho = ctx.rho[i];
       q.m = ctx.p.mass_of(i);
-      q.rho = rho;
+      q.rho = ctx.rho[i];
       q.P = f.pressure[i];
       q.c = f.soundspeed[i];
       q.h = ctx.p.h[i];
-      switch (s.pressure) {
-        case PressureForm::GEOMETRIC:
-          q.prho = f.pressure_factor[i];
-          q.e = q.C = 0.0;
-          break;
-        case PressureForm::PRESSURE_ENERGY:
-          q.prho = f.pressure_factor[i] / q.P;
-          q.e = f.pressure_factor[i];
-          q.C = s.gradh ? f.pe_gradh[i] : 0.0;
-          break;
-        default:
-          q.prho = q.P / ((s.gradh ? f.omega[i] : 1.0) * rho * rho);
-          q.e = q.C = 0.0;
+      q.prho = prho[i];
+      if (EXTRAS) {
+        q.b = b ? b[i] : 1.0;
+        q.w = w ? w[i] : 1.0;
+        q.C = C ? C[i] : 0.0;
+        q.alpha = s.alpha_per_particle ? ctx.alpha[i] : s.alpha;
+        q.shear = s.balsara ? f.balsara[i] : 1.0;
+        q.u = s.alpha_u > 0.0 ? ctx.uest[i] : 0.0;
+        q.vgrad = s.reconstruct ? f.vgrad[i] : nullptr;
+      } else {
+        q.b = q.w = 1.0;
+        q.C = 0.0;
+        q.alpha = s.alpha;
+        q.shear = 1.0;
+        q.u = 0.0;
+        q.vgrad = nullptr;
       }
-      q.alpha = s.alpha_per_particle ? ctx.alpha[i] : s.alpha;
-      q.shear = s.balsara ? f.balsara[i] : 1.0;
-      q.u = s.alpha_u > 0.0 ? ctx.uest[i] : 0.0;
-      q.vgrad = s.reconstruct ? f.vgrad[i] : nullptr;
       q.vx = ctx.vest[i][0];
       q.vy = ctx.vest[i][1];
       q.vz = ctx.vest[i][2];
@@ -72,7 +73,7 @@ namespace {
       ForceParticle pj;
       load(j, pj);
       ForceContribution c;
-      iact_force(s, own.pi, pj, dx, dy, dz, g, c);
+      iact_force<VISC, EXTRAS>(s, own.pi, pj, dx, dy, dz, g, c);
       own.fx += dx * c.fpair;
       own.fy += dy * c.fpair;
       own.fz += dz * c.fpair;
@@ -86,8 +87,8 @@ namespace {
         force[j][2] -= dz * c.fpair;
         f.vdotgradw[j] += c.vgw_j;
         if (s.energy) dudt[j] += c.heat_j;
-        if (s.signal && c.vsig > f.vsigmax[j]) f.vsigmax[j] = c.vsig;
-        if (s.alpha_u > 0.0) f.condrate[j] += c.crate_j;
+        if (VISC == VISC_SIGNAL && c.vsig > f.vsigmax[j]) f.vsigmax[j] = c.vsig;
+        if (EXTRAS && s.alpha_u > 0.0) f.condrate[j] += c.crate_j;
       }
       if (ctx.tally)
         ctx.tally->ev_tally(i, j, ctx.p.nlocal, ctx.newton, 0.0, 0.0, c.fpair, dx, dy, dz);
@@ -99,8 +100,8 @@ namespace {
       force[i][2] += own.fz;
       f.vdotgradw[i] += own.vgw;
       if (s.energy) dudt[i] += own.heat;
-      if (s.signal && own.vsig > f.vsigmax[i]) f.vsigmax[i] = own.vsig;
-      if (s.alpha_u > 0.0) f.condrate[i] += own.crate;
+      if (VISC == VISC_SIGNAL && own.vsig > f.vsigmax[i]) f.vsigmax[i] = own.vsig;
+      if (EXTRAS && s.alpha_u > 0.0) f.condrate[i] += own.crate;
     }
   };
 
@@ -119,10 +120,42 @@ void force_pass(const PassContext &ctx, const ForceSettings &s, bool two_h, bool
   }
   ForceSettings settings = s;
   settings.signal = signal;
+  // the pressure term's factors of owned and ghost atoms (ForceParticle)
+  const int nall = ctx.p.nall;
+  const bool pe = s.pressure == PressureForm::PRESSURE_ENERGY;
+  const bool geo = s.pressure == PressureForm::GEOMETRIC;
+  for (int i = 0; i < nall; i++) {
+    const double rho = ctx.rho[i];
+    f.prho[i] = geo ? f.pressure_factor[i]
+        : pe        ? f.pressure_factor[i] / f.pressure[i]
+                    : f.pressure[i] / ((s.gradh ? f.omega[i] : 1.0) * rho * rho);
+  }
+  const double *b = (pe || geo) ? f.pressure_factor : nullptr;
+  const double *w = pe ? f.pressure_factor : nullptr;
+  const double *C = (pe && s.gradh) ? f.pe_gradh : nullptr;
+  // templates where they pay (doc/architecture.md): the viscosity form and whether any of
+  // Balsara, reconstruction, a switch, conductivity or another pressure form is on
+  const int visc = !s.viscosity ? VISC_NONE : signal ? VISC_SIGNAL : VISC_CLASSIC;
+  const bool extras = s.balsara || s.reconstruct || s.alpha_per_particle || s.alpha_u > 0.0 ||
+      s.pressure != PressureForm::STANDARD;
   with_variant(ctx.kernel, ctx.dim, two_h, [&](auto v) {
     using V = decltype(v);
-    ForceAdapter act{ctx, settings, f, ctx.force, ctx.dudt};
-    pair_loop<typename V::kernel, V::dim, V::two_h>(ctx.half, ctx.p, ctx.newton, average, act);
+    auto run = [&](auto adapter) {
+      pair_loop<typename V::kernel, V::dim, V::two_h>(ctx.half, ctx.p, ctx.newton, average,
+                                                      adapter);
+    };
+    if (visc == VISC_NONE && !extras)
+      run(ForceAdapter<VISC_NONE, false>{ctx, settings, f, ctx.force, ctx.dudt, f.prho, b, w, C});
+    else if (visc == VISC_NONE)
+      run(ForceAdapter<VISC_NONE, true>{ctx, settings, f, ctx.force, ctx.dudt, f.prho, b, w, C});
+    else if (visc == VISC_CLASSIC && !extras)
+      run(ForceAdapter<VISC_CLASSIC, false>{ctx, settings, f, ctx.force, ctx.dudt, f.prho, b, w, C});
+    else if (visc == VISC_CLASSIC)
+      run(ForceAdapter<VISC_CLASSIC, true>{ctx, settings, f, ctx.force, ctx.dudt, f.prho, b, w, C});
+    else if (!extras)
+      run(ForceAdapter<VISC_SIGNAL, false>{ctx, settings, f, ctx.force, ctx.dudt, f.prho, b, w, C});
+    else
+      run(ForceAdapter<VISC_SIGNAL, true>{ctx, settings, f, ctx.force, ctx.dudt, f.prho, b, w, C});
   });
 }
 

@@ -169,12 +169,15 @@ struct ForceSettings {
   bool gradh = false;
 };
 
-// what the force interaction reads of one particle
+// what the force interaction reads of one particle. The pressure term of every form is
+//   prho_i (b_j - C_i) dW_i + prho_j (b_i - C_j) dW_j
+// and the weighted velocity divergence sum_j m_j (w_j - C_i) v_ij . grad_i W, with
+//   STANDARD         prho = P/(Omega rho^2), b = 1, w = 1, C = 0
+//   GEOMETRIC        prho = b = g = sqrt(P)/rho, w = 1, C = 0 (one kernel gradient)
+//   PRESSURE_ENERGY  prho = e/P, b = w = e = (gamma-1) u, C the grad-h term (0 without)
 struct ForceParticle {
   double m, rho, P, c, h;
-  // STANDARD: P/(Omega rho^2); GEOMETRIC: g = sqrt(P)/rho; PRESSURE_ENERGY: e/P
-  double prho;
-  double e, C;            // pressure-energy: e = (gamma-1) u and the grad-h term C
+  double prho, b, w, C;
   double alpha;           // viscosity alpha of the particle (switch) or the constant
   double shear;           // Balsara factor (1 without the limiter)
   double u;               // predicted u (conductivity)
@@ -204,10 +207,25 @@ struct ForceContribution {
 // Artificial conductivity (Price 2008, eq. 28): du_i/dt += -m_j k_ij (u_i - u_j) |dWbar| r,
 // k_ij = alpha_u sqrt(|P_i - P_j|/rho_ij)/rho_ij. Every term is antisymmetric in force or
 // heat flux, so momentum and energy are conserved pair by pair.
-[[gnu::always_inline]] inline void iact_force(const ForceSettings &s, const ForceParticle &pi, const ForceParticle &pj,
-                       double dx, double dy, double dz, const PairGradient &g,
-                       ForceContribution &out)
+//
+// The template arguments fix, where the caller knows them, what ForceSettings says at run time:
+// VISC the viscosity (VISC_RUNTIME: read s), EXTRAS = false: no Balsara limiter, reconstruction,
+// per-particle alpha or conductivity, and the standard pressure term (b = w = 1, C = 0): the
+// common case compiles without them.
+enum ViscosityVariant { VISC_NONE = 0, VISC_CLASSIC = 1, VISC_SIGNAL = 2, VISC_RUNTIME = 3 };
+
+template <int VISC = VISC_RUNTIME, bool EXTRAS = true>
+[[gnu::always_inline]] inline void iact_force(const ForceSettings &s, const ForceParticle &pi,
+                                              const ForceParticle &pj, double dx, double dy,
+                                              double dz, const PairGradient &g,
+                                              ForceContribution &out)
 {
+  const bool viscosity = VISC == VISC_RUNTIME ? s.viscosity : VISC != VISC_NONE;
+  const bool signal = VISC == VISC_RUNTIME ? s.signal : VISC == VISC_SIGNAL;
+  const bool reconstruct = EXTRAS && s.reconstruct;
+  const bool balsara = EXTRAS && s.balsara;
+  const bool per_particle = EXTRAS && s.alpha_per_particle;
+  const bool conductivity = EXTRAS && s.alpha_u > 0.0;
   const double dwi = g.dwi, dwj = g.dwj, dwbar = g.mean(), r = g.r;
   const double dvx = pi.vx - pj.vx, dvy = pi.vy - pj.vy, dvz = pi.vz - pj.vz;
   const double vdotr = dvx * dx + dvy * dy + dvz * dz;
@@ -215,46 +233,30 @@ struct ForceContribution {
 
   double visc = 0.0;
   out.vsig = 0.0;
-  if (s.viscosity) {
-    if (s.signal) out.vsig = signal_velocity(vdotr / r, pi.c, pj.c, s.beta);
+  if (viscosity) {
+    if (signal) out.vsig = signal_velocity(vdotr / r, pi.c, pj.c, s.beta);
     double vdotr_visc = vdotr;
-    if (s.reconstruct)
+    if (reconstruct)
       vdotr_visc = reconstructed_vdotr(vdotr, velocity_slope(pi.vgrad, dx, dy, dz),
                                        velocity_slope(pj.vgrad, dx, dy, dz), r,
                                        0.5 * (pi.vgrad[6] + pj.vgrad[6]),
                                        pi.h > pj.h ? pi.h : pj.h, s.gate);
-    if (vdotr_visc < 0.0 && (!s.reconstruct || vdotr < 0.0)) {
-      const double a = s.alpha_per_particle ? 0.5 * (pi.alpha + pj.alpha) : s.alpha;
-      const double shear = s.balsara ? 0.5 * (pi.shear + pj.shear) : 1.0;
-      if (s.signal)
+    if (vdotr_visc < 0.0 && (!reconstruct || vdotr < 0.0)) {
+      const double a = per_particle ? 0.5 * (pi.alpha + pj.alpha) : s.alpha;
+      const double shear = balsara ? 0.5 * (pi.shear + pj.shear) : 1.0;
+      if (signal)
         visc = viscosity_signal(vdotr_visc, r, a, s.beta, pi.c, pj.c, rhobar, shear);
       else
         visc = viscosity_classic(vdotr_visc, g.r2, 0.5 * (pi.h + pj.h), a,
-                                 s.alpha_per_particle ? s.beta_factor * a : s.beta, s.epsilon,
+                                 per_particle ? s.beta_factor * a : s.beta, s.epsilon,
                                  0.5 * (pi.c + pj.c), rhobar, shear);
     }
   }
 
-  double pterm;
-  switch (s.pressure) {
-    case PressureForm::GEOMETRIC:
-      pterm = pressure_geometric_term(pi.prho, pj.prho) * dwi;
-      break;
-    case PressureForm::PRESSURE_ENERGY:
-      pterm = (pj.e - pi.C) * pi.prho * dwi + (pi.e - pj.C) * pj.prho * dwj;
-      break;
-    default:
-      pterm = pi.prho * dwi + pj.prho * dwj;
-  }
+  const double pterm = pi.prho * (pj.b - pi.C) * dwi + pj.prho * (pi.b - pj.C) * dwj;
   out.fpair = -pi.m * pj.m * (pterm + visc * dwbar);
-
-  if (s.pressure == PressureForm::PRESSURE_ENERGY) {
-    out.vgw_i = continuity_rate(pj.m * (pj.e - pi.C), vdotr, dwi);
-    out.vgw_j = continuity_rate(pi.m * (pi.e - pj.C), vdotr, dwj);
-  } else {
-    out.vgw_i = continuity_rate(pj.m, vdotr, dwi);
-    out.vgw_j = continuity_rate(pi.m, vdotr, dwj);
-  }
+  out.vgw_i = continuity_rate(pj.m * (pj.w - pi.C), vdotr, dwi);
+  out.vgw_j = continuity_rate(pi.m * (pi.w - pj.C), vdotr, dwj);
 
   out.heat_i = out.heat_j = 0.0;
   out.crate_i = out.crate_j = 0.0;
@@ -264,12 +266,12 @@ struct ForceContribution {
     out.heat_i += pj.m * pdv;
     out.heat_j += pi.m * pdv;
   }
-  if (visc != 0.0) {
+  if (viscosity) {    // (no test of visc: a data-dependent branch costs more than the sum)
     const double heat = 0.5 * visc * vdotr * dwbar;
     out.heat_i += pj.m * heat;
     out.heat_j += pi.m * heat;
   }
-  if (s.alpha_u > 0.0) {
+  if (conductivity) {
     const double crate = -conductivity_coefficient(s.alpha_u, pi.P, pj.P, rhobar) * dwbar * r;
     const double cond = -crate * (pi.u - pj.u);
     out.heat_i += pj.m * cond;

@@ -49,7 +49,8 @@ struct Fields {
   // the per-particle factor of the pressure term: sqrt(P)/rho (pressure geometric) or
   // e = (gamma-1) u = P/rho (pressure-energy)
   double *pressure_factor = nullptr;
-  double *energy_sum = nullptr;    // pressure-energy with grad-h: sum_j m_j u_j W(h_i)
+  double *energy_sum = nullptr;
+  double *prho = nullptr;          // the pressure term's P/(Omega rho^2), g or e/P (force pass)    // pressure-energy with grad-h: sum_j m_j u_j W(h_i)
   double *conduct = nullptr;       // physical heat conduction: du/dt of this step
 };
 
