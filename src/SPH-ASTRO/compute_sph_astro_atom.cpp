@@ -20,6 +20,7 @@
 #include "force.h"
 #include "memory.h"
 #include "pair_sph_astro.h"
+#include "sph_astro_options.h"
 #include "update.h"
 
 #include <cstring>
@@ -109,7 +110,7 @@ void ComputeSPHAstroAtom::compute_peratom()
     const double *src = columns[fields_[k]];
     double fill = 0.0;    // value when there is no per-atom source
     if (fields_[k] == OMEGA) fill = 1.0;
-    if (fields_[k] == ALPHA) fill = pair_->alpha();
+    if (fields_[k] == ALPHA) fill = pair_->options().alpha;
     for (int i = 0; i < nlocal; i++) {
       const double value = !(mask[i] & groupbit) ? 0.0 : (src ? src[i] : fill);
       if (size_peratom_cols == 0)

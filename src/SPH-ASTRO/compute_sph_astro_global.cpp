@@ -31,7 +31,7 @@
 #include "kspace.h"
 #include "modify.h"
 #include "pair_sph_astro.h"
-#include "sph_astro_eos.h"
+#include "sph_astro_options.h"
 #include "update.h"
 
 #include <cmath>
@@ -87,7 +87,7 @@ void ComputeSPHAstroGlobal::compute_vector()
   const double *mass = atom->mass;
   const double *rho = atom->dvector[state_.rho];
   const double *u = atom->dvector[state_.u];
-  const SPHAstro::EOS &eos = pair_->eos();
+  const SPHAstro::EOS &eos = pair_->options().eos;
   const int nlocal = atom->nlocal;
 
   double local[NVALUES] = {0.0};

@@ -182,7 +182,7 @@ void FixSPHAstro::post_constructor()
 bool FixSPHAstro::pair_has_continuity() const
 {
   auto *pair = dynamic_cast<PairSPHAstro *>(force->pair_match("^sph/astro$", 0, 0));
-  return pair && pair->density_continuity();
+  return pair && pair->options().density_continuity;
 }
 
 void FixSPHAstro::init()
@@ -196,9 +196,9 @@ void FixSPHAstro::init()
                update->unit_style, force->ftm2v);
   if (!find_state(lmp, *state_))
     error->all(FLERR, "fix sph/astro: the per-particle state fix {} is missing", STATE_FIX_ID);
-  evolve_u_ = pair_->eos().uses_energy();
+  evolve_u_ = pair_->options().eos.uses_energy();
   if (entropy_) {
-    if (pair_->eos().type != EOSType::IDEAL)
+    if (pair_->options().eos.type != EOSType::IDEAL)
       error->all(FLERR,
                  "fix sph/astro thermal entropy needs pair_style sph/astro eos ideal (P = A "
                  "rho^gamma)");
@@ -207,7 +207,7 @@ void FixSPHAstro::init()
   }
   auto hfixes = modify->get_fix_by_style("^sph/astro/h$");
   hfix_ = hfixes.empty() ? nullptr : dynamic_cast<FixSPHAstroH *>(hfixes.front());
-  continuity_ = pair_->density_continuity();
+  continuity_ = pair_->options().density_continuity;
   if (continuity_ && !find_continuity_state(lmp, *continuity_index_))
     error->all(FLERR,
                "fix sph/astro: pair_style sph/astro density continuity needs the per-atom state "
@@ -350,7 +350,7 @@ void FixSPHAstro::final_integrate()
   const double *dAdt = entropy_ ? atom->dvector[entropy_index_->dAdt] : nullptr;
   double *rho = atom->dvector[state_->rho];
   const double *drhodt = continuity_ ? atom->dvector[continuity_index_->drhodt] : nullptr;
-  const double gamma = pair_->eos().gamma;
+  const double gamma = pair_->options().eos.gamma;
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
@@ -640,7 +640,7 @@ void FixSPHAstro::xsph_correction()
   // atoms outside the list (none for a list of all atoms) keep a zero correction
   for (int i = 0; i < atom->nlocal; i++) xsph_[i][0] = xsph_[i][1] = xsph_[i][2] = 0.0;
   PassContext ctx{};
-  ctx.kernel = pair_->kernel_type();
+  ctx.kernel = pair_->options().kernel;
   ctx.dim = domain->dimension;
   ctx.p = {atom->x,      atom->dvector[state_->h], atom->type, atom->rmass, atom->mass,
            atom->nlocal, atom->nlocal + atom->nghost};

@@ -56,6 +56,7 @@
 #include "neigh_request.h"
 #include "neighbor.h"
 #include "pair_sph_astro.h"
+#include "sph_astro_options.h"
 #include "sph_astro_passes.h"
 #include "sph_astro_state.h"
 #include "timer.h"
@@ -207,7 +208,7 @@ void FixSPHAstroH::setup_collections()
   MPI_Allreduce(&hmin_local, &hmin, 1, MPI_DOUBLE, MPI_MIN, world);
   double capmax = 0.0;
   for (int t = 1; t <= atom->ntypes; t++) capmax = MAX(capmax, pair_->h_cap(t));
-  const double R = pair_->kernel_radius();
+  const double R = pair_->options().kernel_radius();
   const double cmax = R * capmax;
   double cmin = std::isfinite(hmin) ? MIN(R * hmin * PairSPHAstro::COLLECTION_GROWTH, cmax) : cmax;
   // LAMMPS bins every collection over the subdomain and its ghost shell with bins of half its
@@ -341,7 +342,7 @@ void FixSPHAstroH::post_run()
 
 void FixSPHAstroH::advance_h(double dt)
 {
-  const double *divv = pair_->divv();
+  const double *divv = pair_->fields().divv;
   if (!divv || pair_->computed_nlocal() != atom->nlocal) return;
   double *h = atom->dvector[state_->h];
   const int *mask = atom->mask;

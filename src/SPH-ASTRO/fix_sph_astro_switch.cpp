@@ -27,6 +27,7 @@
 #include "force.h"
 #include "modify.h"
 #include "pair_sph_astro.h"
+#include "sph_astro_fields.h"
 #include "sph_astro_pair_terms.h"
 #include "sph_astro_state.h"
 #include "update.h"
@@ -147,15 +148,15 @@ void FixSPHAstroSwitch::init()
 void FixSPHAstroSwitch::setup(int /*vflag*/)
 {
   if (form_ != Form::CULLEN_DEHNEN) return;
-  const double *divv = pair_->divv();
+  const double *divv = pair_->fields().divv;
   double *prev = divv_prev();
   for (int i = 0; i < atom->nlocal; i++) prev[i] = divv[i];
 }
 
 void FixSPHAstroSwitch::final_integrate()
 {
-  const double *divv = pair_->divv();
-  const double *cs = pair_->soundspeed();
+  const double *divv = pair_->fields().divv;
+  const double *cs = pair_->fields().soundspeed;
   const double *h = atom->dvector[h_index_];
   double *a = alpha();
   const int *mask = atom->mask;
@@ -168,7 +169,7 @@ void FixSPHAstroSwitch::final_integrate()
                                                 alpha_max_, ell_);
     return;
   }
-  const double *curlv = pair_->curlv();
+  const double *curlv = pair_->fields().curlv;
   double *prev = divv_prev();
   if (!curlv || !prev)
     error->all(FLERR, "fix sph/astro/switch cullen-dehnen: curl v or d_divv_prev is missing");

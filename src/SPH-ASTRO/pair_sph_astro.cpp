@@ -53,7 +53,7 @@ PairSPHAstro::PairSPHAstro(LAMMPS *lmp) :
     h_tolerance_(1e-4), h_margin_(1.0), h_max_iterations_(30), entropy_(false), switch_(false),
     curl_on_(false), entropy_init_pending_(false), density_init_pending_(false),
     alpha_atom_(nullptr), hcap_type_(nullptr), kernel_radius_(2.0), h_failures_(0), prune_atom_fallbacks_(0),
-    counts_step_(-1), computed_step_(-1), computed_nlocal_(-1), nmax_(0),
+    counts_step_(-1), computed_step_(-1), computed_nlocal_(-1),
     comm_table_(new CommTable())
 {
   single_enable = 0;
@@ -70,14 +70,7 @@ PairSPHAstro::PairSPHAstro(LAMMPS *lmp) :
 PairSPHAstro::~PairSPHAstro()
 {
   if (copymode) return;
-  Fields &f = *fields_;
-  for (double **a : {&f.pressure, &f.soundspeed, &f.vdotgradw, &f.divv, &f.nneigh, &f.omega,
-                     &f.curlv, &f.balsara, &f.vsigmax, &f.condrate, &f.pe_gradh, &f.pressure_factor, &f.energy_sum, &f.prho,
-                     &f.conduct})
-    memory->destroy(*a);
-  memory->destroy(f.dcurl);
-  memory->destroy(f.vgsum);
-  memory->destroy(f.vgrad);
+  fields_->destroy(memory);
   memory->destroy(hcap_type_);
   if (allocated) {
     memory->destroy(setflag);
@@ -164,62 +157,10 @@ void PairSPHAstro::init_style()
   }
   h_failures_ = 0;
 
-  const char *eos_name = o.eos.type == EOSType::ISOTHERMAL ? "isothermal" : "polytropic";
-  if (o.conductivity > 0.0 && !o.eos.uses_energy() && comm->me == 0)
-    error->warning(FLERR,
-                   "pair_style sph/astro: conductivity {} has no effect with eos {} (only the "
-                   "ideal gas evolves u)",
-                   o.conductivity, eos_name);
-  if (o.conduction > 0.0 && !o.eos.uses_energy())
-    error->all(FLERR,
-               "pair_style sph/astro: conduction {} needs eos ideal (the energy equation); eos {} "
-               "does not evolve u",
-               o.conduction, eos_name);
-
   auto switches = modify->get_fix_by_style("^sph/astro/switch$");
   switch_ = !switches.empty();
-  if (switch_ && !(o.has_viscosity() && o.alpha > 0.0))
-    error->all(FLERR,
-               "fix sph/astro/switch needs pair_style sph/astro viscosity classic or signal with "
-               "alpha > 0 (classic: beta scales with the particle's alpha as beta/alpha)");
   curl_on_ = o.balsara || (switch_ && fix_setting(switches.front(), "needs_curl") != 0.0);
-
-  // the alternatives of the fixed-h equations; with grad-h terms the density, its kernels and
-  // the pressure term follow from the h-rho relation
-  if (gradh()) {
-    if (o.density_continuity)
-      error->all(FLERR,
-                 "pair_style sph/astro density continuity needs fixed h or fix sph/astro/h dhdt: "
-                 "with fix sph/astro/h iterate h follows from the summed density");
-    if (o.symmetrise_kernel)
-      error->all(FLERR,
-                 "pair_style sph/astro symmetrise kernel needs fixed h or fix sph/astro/h dhdt: "
-                 "with fix sph/astro/h iterate the grad-h equations use W(h_i) and W(h_j) "
-                 "already");
-    if (o.pressure_geometric)
-      error->all(FLERR,
-                 "pair_style sph/astro pressure geometric needs fixed h or fix sph/astro/h dhdt: "
-                 "the grad-h equations (fix sph/astro/h iterate) have their own pressure term");
-  }
-  if (o.pressure_geometric && entropy_)
-    error->all(FLERR,
-               "pair_style sph/astro pressure geometric needs fix sph/astro thermal energy: with "
-               "thermal entropy the P dV work is P_i/rho_i^2 drho_i/dt, which does not match the "
-               "geometric-mean force");
-  if (o.pressure_energy) {
-    const char *what = nullptr;
-    if (o.eos.type != EOSType::IDEAL)
-      what = "eos ideal (the smoothed pressure is (gamma-1) sum_j m_j u_j W_ij)";
-    else if (entropy_)
-      what = "fix sph/astro thermal energy (it evolves u; thermal entropy is not supported)";
-    else if (o.density_continuity)
-      what = "density summation (its density follows from the smoothed pressure)";
-    else if (o.symmetrise_kernel)
-      what = "symmetrise hmean";
-    else if (o.pressure_geometric)
-      what = "pressure standard (it has a pressure term of its own)";
-    if (what) error->all(FLERR, "pair_style sph/astro formulation pressure-energy needs {}", what);
-  }
+  o.check_scheme(lmp, gradh(), entropy_, switch_);
   if (o.density_continuity && !find_continuity_state(lmp, *continuity_index_))
     error->all(FLERR,
                "pair_style sph/astro density continuity: the per-atom state fix {} is missing",
@@ -300,48 +241,14 @@ double PairSPHAstro::init_one(int i, int j)
   return R * 0.5 * (hcap_type_[i] + hcap_type_[j]);
 }
 
-/* ----------------------------------------------------------------------
-   per-atom arrays, grown to atom->nmax (owned + ghost), only those the scene needs
-------------------------------------------------------------------------- */
-
+// per-atom arrays, grown to atom->nmax (owned + ghost), only those the scene needs
 void PairSPHAstro::grow_fields()
 {
   const PairOptions &o = *opt_;
-  Fields &f = *fields_;
-  const bool geo = o.pressure_geometric || o.pressure_energy;
-  if (atom->nmax <= nmax_ && (!curl_on_ || f.curlv) && (!o.signal_viscosity() || f.vsigmax) &&
-      (!geo || f.pressure_factor) && (!(o.pressure_energy && gradh()) || f.energy_sum) && (!o.reconstruction() || f.vgrad) &&
-      (!o.artificial_conductivity() || f.condrate) && (!o.pressure_energy || f.pe_gradh) &&
-      (!o.physical_conduction() || f.conduct) && (!o.balsara || f.balsara))
-    return;
-  nmax_ = MAX(nmax_, atom->nmax);
-  const int n = nmax_;
-  auto make = [&](double *&a, bool wanted, const char *name) {
-    memory->destroy(a);
-    if (wanted) memory->create(a, n, name);
-  };
-  auto make2 = [&](double **&a, bool wanted, int ncol, const char *name) {
-    memory->destroy(a);
-    if (wanted) memory->create(a, n, ncol, name);
-  };
-  make(f.pressure, true, "pair:sph/astro:pressure");
-  make(f.soundspeed, true, "pair:sph/astro:soundspeed");
-  make(f.vdotgradw, true, "pair:sph/astro:vdotgradw");
-  make(f.divv, true, "pair:sph/astro:divv");
-  make(f.nneigh, true, "pair:sph/astro:nneigh");
-  make(f.prho, true, "pair:sph/astro:prho");
-  make(f.omega, true, "pair:sph/astro:omega");
-  make2(f.dcurl, curl_on_, 4, "pair:sph/astro:dcurl");
-  make(f.curlv, curl_on_, "pair:sph/astro:curlv");
-  make(f.balsara, o.balsara, "pair:sph/astro:balsara");
-  make(f.vsigmax, o.signal_viscosity(), "pair:sph/astro:vsigmax");
-  make2(f.vgsum, o.reconstruction(), VGRAD_SUMS, "pair:sph/astro:vgsum");
-  make2(f.vgrad, o.reconstruction(), VGRAD_DATA, "pair:sph/astro:vgrad");
-  make(f.condrate, o.artificial_conductivity(), "pair:sph/astro:condrate");
-  make(f.pe_gradh, o.pressure_energy, "pair:sph/astro:pe_gradh");
-  make(f.pressure_factor, geo, "pair:sph/astro:pressure_factor");
-  make(f.energy_sum, o.pressure_energy && gradh(), "pair:sph/astro:energy_sum");
-  make(f.conduct, o.physical_conduction(), "pair:sph/astro:conduct");
+  fields_->grow(memory, atom->nmax,
+                {curl_on_, o.balsara, o.signal_viscosity(), o.reconstruction(),
+                 o.artificial_conductivity(), o.pressure_geometric || o.pressure_energy,
+                 o.pressure_energy, o.pressure_energy && gradh(), o.physical_conduction()});
 }
 
 PassContext PairSPHAstro::context()
@@ -394,13 +301,13 @@ void PairSPHAstro::compute(int eflag, int vflag)
   if (!gradh()) ctx.half = lists_->half(h);
   density_stage(ctx);
   if (gradh()) ctx.half = lists_->half(h);    // h is that of the iteration now
-  equation_of_state();
+  equation_of_state(ctx);
   gradient_stage(ctx);
   // pressure-energy with grad-h terms: div v and curl v above are those of the mass density
   // and Omega; now rho_i = P_i / ((gamma-1) u_i) and the EOS again (P = (gamma-1) rho u)
   if (gradh() && opt_->pressure_energy) {
-    pressure_energy_density(fields_->energy_sum);
-    equation_of_state();
+    pressure_energy_density(ctx, fields_->energy_sum);
+    equation_of_state(ctx);
   }
   forward_state();
   force_stage(ctx);
@@ -449,7 +356,7 @@ void PairSPHAstro::density_stage(PassContext &ctx)
   }
   density_summation(ctx, o.symmetrise_kernel, o.pressure_energy);
   if (ctx.newton) reverse({{ctx.rho_sum, nullptr, 1, false}, {f.nneigh, nullptr, 1, false}});
-  if (o.pressure_energy) pressure_energy_density(ctx.rho_sum);
+  if (o.pressure_energy) pressure_energy_density(ctx, ctx.rho_sum);
   if (o.density_continuity) {    // the integrated density starts from one summation
     double *rhoest = atom->dvector[continuity_index_->rhoest];
     for (int i = 0; i < atom->nlocal; i++) rhoest[i] = ctx.rho_sum[i];
@@ -490,25 +397,7 @@ void PairSPHAstro::force_stage(PassContext &ctx)
   else if (o.pressure_energy)    // (gamma-1) u = P/rho of owned and ghost atoms
     for (int i = 0; i < nall; i++) f.pressure_factor[i] = f.pressure[i] / ctx.rho[i];
 
-  ForceSettings s;
-  s.pressure = o.pressure_energy  ? PressureForm::PRESSURE_ENERGY
-      : o.pressure_geometric      ? PressureForm::GEOMETRIC
-                                  : PressureForm::STANDARD;
-  s.viscosity = o.has_viscosity();
-  s.signal = o.signal_viscosity();
-  s.reconstruct = o.reconstruction();
-  s.balsara = o.balsara;
-  s.alpha_per_particle = alpha_atom_ != nullptr;
-  s.alpha = o.alpha;
-  s.beta = o.beta;
-  s.beta_factor = o.beta_factor();
-  s.epsilon = o.epsilon;
-  s.gate = o.recon_gate;
-  // only the ideal gas evolves u, so only it has conductivity
-  s.energy = o.eos.uses_energy();
-  s.alpha_u = o.artificial_conductivity() ? o.conductivity : 0.0;
-  s.gradh = gradh();
-
+  const ForceSettings s = force_settings(o, gradh(), alpha_atom_ != nullptr);
   force_pass(ctx, s, gradh() || o.symmetrise_kernel, o.symmetrise_kernel);
   if (ctx.newton) {
     double *dudt = s.energy ? ctx.dudt : nullptr;
@@ -518,7 +407,9 @@ void PairSPHAstro::force_stage(PassContext &ctx)
              {s.alpha_u > 0.0 ? f.condrate : nullptr, nullptr, 1, false}});
   }
   finish_force(ctx, s);
-  if (s.energy) finish_thermal_rates();
+  if (s.energy)
+    thermal_rates(ctx, o.eos, gradh() && !o.pressure_energy, o.pressure_geometric,
+                  entropy_ ? atom->dvector[entropy_index_->dAdt] : nullptr);
   // drho_i/dt = sum_j m_j v_ij . grad_i W_ij (Monaghan 1992, eq. 2.12), integrated by fix
   // sph/astro
   if (o.density_continuity) {
@@ -542,88 +433,16 @@ void PairSPHAstro::conduction_stage(PassContext &ctx)
   }
 }
 
-// du_i/dt so far holds the dissipative heating (viscosity, conductivity); add the P dV work
-// P_i/(Omega_i rho_i^2) sum_j m_j v_ij . grad W (Omega = 1 without grad-h terms). With the
-// entropy formulation dA_i/dt = (gamma-1) / rho_i^(gamma-1) x heating (Springel & Hernquist
-// 2002, eq. 8). With pressure geometric the P dV work is in du_i/dt already.
-void PairSPHAstro::finish_thermal_rates()
+// the EOS of this evaluation; A from u when fix sph/astro scheduled it
+void PairSPHAstro::equation_of_state(const PassContext &ctx)
 {
-  const Fields &f = *fields_;
-  const int nlocal = atom->nlocal;
-  const double *rho = eval_density();
-  double *dudt = atom->dvector[state_->dudt];
-  if (entropy_) {
-    double *dAdt = atom->dvector[entropy_index_->dAdt];
-    const double g1 = opt_->eos.gamma - 1.0;
-    for (int i = 0; i < nlocal; i++) dAdt[i] = g1 * std::pow(rho[i], -g1) * dudt[i];
-  }
-  if (opt_->pressure_geometric) return;
-  const bool omega = gradh() && !opt_->pressure_energy;
-  for (int i = 0; i < nlocal; i++)
-    dudt[i] += f.pressure[i] / ((omega ? f.omega[i] : 1.0) * rho[i] * rho[i]) * f.vdotgradw[i];
-}
-
-void PairSPHAstro::equation_of_state()
-{
-  const PairOptions &o = *opt_;
-  Fields &f = *fields_;
-  const int nlocal = atom->nlocal;
-  const double *rho = eval_density();
-  const double *h = atom->dvector[state_->h];
-  double *uest = atom->dvector[state_->uest];
-  const tagint *tag = atom->tag;
-  const int *type = atom->type;
-
-  // entropy formulation: P = A rho^gamma (Springel & Hernquist 2002); A starts from u
-  if (entropy_) {
-    double *A = atom->dvector[entropy_index_->A];
-    double *Aest = atom->dvector[entropy_index_->Aest];
-    const double *u = atom->dvector[state_->u];
-    const double g1 = o.eos.gamma - 1.0;
-    const bool init = entropy_init_pending_;
-    for (int i = 0; i < nlocal; i++) {
-      if (init) Aest[i] = A[i] = g1 * u[i] * std::pow(rho[i], -g1);
-      uest[i] = Aest[i] * std::pow(rho[i], g1) / g1;
-    }
-    entropy_init_pending_ = false;
-  }
-  for (int i = 0; i < nlocal; i++) {
-    if (!(rho[i] > 0.0) || !std::isfinite(rho[i]))
-      error->one(FLERR, "pair_style sph/astro: atom {} has density {} ({}position not finite?)",
-                 tag[i], rho[i],
-                 o.density_continuity ? "density continuity: too large a timestep? " : "");
-    if (h[i] > hcap_type_[type[i]])
-      error->one(FLERR,
-                 "pair_style sph/astro: atom {} has h = {} larger than the h = {} the neighbour "
-                 "lists of its type were built for; h was changed during a run (fix "
-                 "sph/astro/h keeps h below that cap)",
-                 tag[i], h[i], hcap_type_[type[i]]);
-    const double u = uest[i];
-    if (o.eos.uses_energy() && (!(u >= 0.0) || !std::isfinite(u)))
-      error->one(FLERR,
-                 "pair_style sph/astro: atom {} has specific internal energy u = {}; u must be "
-                 "finite and >= 0",
-                 tag[i], u);
-    o.eos.pressure_soundspeed(rho[i], u, f.pressure[i], f.soundspeed[i]);
-  }
-}
-
-// formulation pressure-energy: rho_i = (sum_j m_j u_j W_ij) / u_i, the density that makes the
-// ideal-gas pressure (gamma-1) rho_i u_i equal the smoothed one (Saitoh & Makino 2013, the
-// volume element m_i u_i / sum_j m_j u_j W_ij)
-void PairSPHAstro::pressure_energy_density(const double *energy_sum)
-{
-  const int nlocal = atom->nlocal;
-  double *rho = atom->dvector[state_->rho];
-  const double *uest = atom->dvector[state_->uest];
-  for (int i = 0; i < nlocal; i++) {
-    if (!(uest[i] > 0.0) || !std::isfinite(uest[i]))
-      error->one(FLERR,
-                 "pair_style sph/astro formulation pressure-energy: atom {} has specific internal "
-                 "energy u = {}; this formulation needs u > 0 (rho = P/((gamma-1) u))",
-                 atom->tag[i], uest[i]);
-    rho[i] = energy_sum[i] / uest[i];
-  }
+  EntropyArrays entropy{nullptr, nullptr, nullptr, nullptr};
+  if (entropy_)
+    entropy = {atom->dvector[entropy_index_->A], atom->dvector[entropy_index_->Aest],
+               atom->dvector[entropy_index_->dAdt], atom->dvector[state_->u]};
+  SPHAstro::equation_of_state(ctx, opt_->eos, hcap_type_, opt_->density_continuity,
+                              entropy_ ? &entropy : nullptr, entropy_init_pending_);
+  if (entropy_) entropy_init_pending_ = false;
 }
 
 /* ----------------------------------------------------------------------
@@ -770,56 +589,6 @@ bigint PairSPHAstro::prune_fallbacks() const
    the narrow interface of the package's fixes and computes
 ------------------------------------------------------------------------- */
 
-const EOS &PairSPHAstro::eos() const
-{
-  return opt_->eos;
-}
-
-double PairSPHAstro::kernel_radius() const
-{
-  return opt_->kernel_radius();
-}
-
-KernelType PairSPHAstro::kernel_type() const
-{
-  return opt_->kernel;
-}
-
-double PairSPHAstro::alpha() const
-{
-  return opt_->alpha;
-}
-
-double PairSPHAstro::beta() const
-{
-  return opt_->beta;
-}
-
-bool PairSPHAstro::density_continuity() const
-{
-  return opt_->density_continuity;
-}
-
-const double *PairSPHAstro::pressure() const
-{
-  return fields_->pressure;
-}
-
-const double *PairSPHAstro::soundspeed() const
-{
-  return fields_->soundspeed;
-}
-
-const double *PairSPHAstro::divv() const
-{
-  return fields_->divv;
-}
-
-const double *PairSPHAstro::curlv() const
-{
-  return curl_on_ ? fields_->curlv : nullptr;
-}
-
 const double *PairSPHAstro::omega() const
 {
   return gradh() ? fields_->omega : nullptr;
@@ -891,7 +660,7 @@ void *PairSPHAstro::extract_peratom(const char *name, int &ncol)
   if (strcmp(name, "nneigh") == 0)
     return counts_step_ == computed_step_ ? (void *) f.nneigh : nullptr;
   if (strcmp(name, "omega") == 0) return (void *) f.omega;
-  if (strcmp(name, "curlv") == 0) return (void *) curlv();
+  if (strcmp(name, "curlv") == 0) return (void *) (curl_on_ ? f.curlv : nullptr);
   if (strcmp(name, "vsigmax") == 0) return (void *) (o.signal_viscosity() ? f.vsigmax : nullptr);
   if (strcmp(name, "balsara") == 0) return (void *) (o.balsara ? f.balsara : nullptr);
   if (strcmp(name, "condrate") == 0)
@@ -908,13 +677,5 @@ void *PairSPHAstro::extract_peratom(const char *name, int &ncol)
 
 double PairSPHAstro::memory_usage()
 {
-  const Fields &f = *fields_;
-  int arrays = 7;
-  for (const double *a : {f.curlv, f.balsara, f.vsigmax, f.condrate, f.pe_gradh, f.pressure_factor, f.energy_sum,
-                           f.conduct})
-    if (a) arrays++;
-  if (f.dcurl) arrays += 4;
-  if (f.vgsum) arrays += VGRAD_SUMS + VGRAD_DATA;
-  return static_cast<double>(arrays) * nmax_ * sizeof(double) + lists_->memory_usage() +
-      Pair::memory_usage();
+  return fields_->memory_usage() + lists_->memory_usage() + Pair::memory_usage();
 }

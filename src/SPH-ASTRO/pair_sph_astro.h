@@ -71,22 +71,14 @@ class PairSPHAstro : public Pair {
 
   // settings
   const SPHAstro::PairOptions &options() const { return *opt_; }
-  const SPHAstro::EOS &eos() const;
-  double kernel_radius() const;    // support = kernel_radius * h
-  SPHAstro::KernelType kernel_type() const;
-  double alpha() const;
-  double beta() const;
-  bool density_continuity() const;
   // per-particle alpha (owned + ghost) when fix sph/astro/switch is active, else null
   const double *alpha_per_atom() const { return alpha_atom_; }
 
-  // results of the latest force evaluation (owned atoms; ghosts where communicated)
+  // results of the latest force evaluation (owned atoms; ghosts where communicated):
+  // P, c_s, div v, curl v (null unless Balsara or Cullen-Dehnen need it), Omega, ...
+  const SPHAstro::Fields &fields() const { return *fields_; }
   bigint computed_step() const { return computed_step_; }
   int computed_nlocal() const { return computed_nlocal_; }
-  const double *pressure() const;
-  const double *soundspeed() const;
-  const double *divv() const;
-  const double *curlv() const;    // null unless Balsara or Cullen-Dehnen need it
   // grad-h factors Omega, null unless fix sph/astro/h iterate
   const double *omega() const;
   // the density of the latest force evaluation: the summed d_rho, or with density continuity
@@ -155,7 +147,6 @@ class PairSPHAstro : public Pair {
   bigint counts_step_;    // step whose force evaluation the neighbour counts belong to
   bigint computed_step_;
   int computed_nlocal_;
-  int nmax_;
 
   // communication: the arrays a stage sends (forward) or sums (reverse)
   SPHAstro::CommTable *comm_table_;
@@ -172,9 +163,7 @@ class PairSPHAstro : public Pair {
   void gradient_stage(SPHAstro::PassContext &ctx);
   void force_stage(SPHAstro::PassContext &ctx);
   void conduction_stage(SPHAstro::PassContext &ctx);
-  void equation_of_state();
-  void pressure_energy_density(const double *energy_sum);
-  void finish_thermal_rates();
+  void equation_of_state(const SPHAstro::PassContext &ctx);
 };
 
 }    // namespace LAMMPS_NS

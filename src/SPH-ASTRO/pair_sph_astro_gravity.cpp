@@ -44,6 +44,7 @@
 #include "pair_sph_astro_gravity.h"
 
 #include "pair_sph_astro.h"
+#include "sph_astro_options.h"
 #include "sph_astro_gravity_kernel.h"
 #include "sph_astro_gravity_kspace.h"
 
@@ -204,12 +205,12 @@ void PairSPHAstroGravity::init_style()
   auto *sph = dynamic_cast<PairSPHAstro *>(force->pair_match("^sph/astro$", 0, 0));
   sph_ = sph;
   if (sph) {
-    if (kernel_given_ && sph->kernel_type() != kernel_)
+    if (kernel_given_ && sph->options().kernel != kernel_)
       error->all(FLERR,
                  "pair_style sph/astro/gravity: kernel {} differs from the kernel {} of pair "
                  "sph/astro; drop the keyword to use the same",
-                 kernel_name(kernel_), kernel_name(sph->kernel_type()));
-    kernel_ = sph->kernel_type();
+                 kernel_name(kernel_), kernel_name(sph->options().kernel));
+    kernel_ = sph->options().kernel;
   }
   // the softened potential has closed forms for the polynomial kernels only
   if (kernel_ == KernelType::GAUSSIAN)

@@ -107,6 +107,28 @@ namespace {
 
 }    // namespace
 
+ForceSettings force_settings(const PairOptions &o, bool gradh, bool per_particle_alpha)
+{
+  ForceSettings s;
+  s.pressure = o.pressure_energy  ? PressureForm::PRESSURE_ENERGY
+      : o.pressure_geometric      ? PressureForm::GEOMETRIC
+                                  : PressureForm::STANDARD;
+  s.viscosity = o.has_viscosity();
+  s.signal = o.signal_viscosity();
+  s.reconstruct = o.reconstruction();
+  s.balsara = o.balsara;
+  s.alpha_per_particle = per_particle_alpha;
+  s.alpha = o.alpha;
+  s.beta = o.beta;
+  s.beta_factor = o.beta_factor();
+  s.epsilon = o.epsilon;
+  s.gate = o.recon_gate;
+  s.energy = o.eos.uses_energy();    // only the ideal gas evolves u (and has conductivity)
+  s.alpha_u = o.artificial_conductivity() ? o.conductivity : 0.0;
+  s.gradh = gradh;
+  return s;
+}
+
 void force_pass(const PassContext &ctx, const ForceSettings &s, bool two_h, bool average)
 {
   Fields &f = *ctx.f;

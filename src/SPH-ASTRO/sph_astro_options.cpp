@@ -218,6 +218,66 @@ void PairOptions::parse(LAMMPS *lmp, int narg, char **arg)
                "reconstruction removes the viscosity of a linear shear flow already); use one");
 }
 
+// the options against the rest of the scheme: h iterated with grad-h terms, the thermal variable
+// entropy, a viscosity switch
+void PairOptions::check_scheme(LAMMPS *lmp, bool gradh, bool entropy, bool has_switch) const
+{
+  Error *error = lmp->error;
+  const char *eos_name = eos.type == EOSType::ISOTHERMAL ? "isothermal" : "polytropic";
+  if (conductivity > 0.0 && !eos.uses_energy() && lmp->comm->me == 0)
+    error->warning(FLERR,
+                   "pair_style sph/astro: conductivity {} has no effect with eos {} (only the "
+                   "ideal gas evolves u)",
+                   conductivity, eos_name);
+  if (conduction > 0.0 && !eos.uses_energy())
+    error->all(FLERR,
+               "pair_style sph/astro: conduction {} needs eos ideal (the energy equation); eos {} "
+               "does not evolve u",
+               conduction, eos_name);
+
+  if (has_switch && !(has_viscosity() && alpha > 0.0))
+    error->all(FLERR,
+               "fix sph/astro/switch needs pair_style sph/astro viscosity classic or signal with "
+               "alpha > 0 (classic: beta scales with the particle's alpha as beta/alpha)");
+
+  // the alternatives of the fixed-h equations; with grad-h terms the density, its kernels and
+  // the pressure term follow from the h-rho relation
+  if (gradh) {
+    if (density_continuity)
+      error->all(FLERR,
+                 "pair_style sph/astro density continuity needs fixed h or fix sph/astro/h dhdt: "
+                 "with fix sph/astro/h iterate h follows from the summed density");
+    if (symmetrise_kernel)
+      error->all(FLERR,
+                 "pair_style sph/astro symmetrise kernel needs fixed h or fix sph/astro/h dhdt: "
+                 "with fix sph/astro/h iterate the grad-h equations use W(h_i) and W(h_j) "
+                 "already");
+    if (pressure_geometric)
+      error->all(FLERR,
+                 "pair_style sph/astro pressure geometric needs fixed h or fix sph/astro/h dhdt: "
+                 "the grad-h equations (fix sph/astro/h iterate) have their own pressure term");
+  }
+  if (pressure_geometric && entropy)
+    error->all(FLERR,
+               "pair_style sph/astro pressure geometric needs fix sph/astro thermal energy: with "
+               "thermal entropy the P dV work is P_i/rho_i^2 drho_i/dt, which does not match the "
+               "geometric-mean force");
+  if (pressure_energy) {
+    const char *what = nullptr;
+    if (eos.type != EOSType::IDEAL)
+      what = "eos ideal (the smoothed pressure is (gamma-1) sum_j m_j u_j W_ij)";
+    else if (entropy)
+      what = "fix sph/astro thermal energy (it evolves u; thermal entropy is not supported)";
+    else if (density_continuity)
+      what = "density summation (its density follows from the smoothed pressure)";
+    else if (symmetrise_kernel)
+      what = "symmetrise hmean";
+    else if (pressure_geometric)
+      what = "pressure standard (it has a pressure term of its own)";
+    if (what) error->all(FLERR, "pair_style sph/astro formulation pressure-energy needs {}", what);
+  }
+}
+
 // layout: 3 ints (kernel, eos, viscosity bits), 7 doubles, kappa, option bits, trigger, gate
 void PairOptions::write_restart(FILE *fp) const
 {

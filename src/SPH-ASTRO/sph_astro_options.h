@@ -48,6 +48,8 @@ struct PairOptions {
   // parse pair_style arguments (a repeated pair_style starts from the defaults); errors name
   // the keyword, the value and what is allowed
   void parse(LAMMPS_NS::LAMMPS *lmp, int narg, char **arg);
+  // errors (and warnings) for options that do not fit the rest of the scheme
+  void check_scheme(LAMMPS_NS::LAMMPS *lmp, bool gradh, bool entropy, bool has_switch) const;
   void write_restart(FILE *fp) const;
   // rank 0 reads, every rank receives
   void read_restart(LAMMPS_NS::LAMMPS *lmp, FILE *fp);

@@ -21,6 +21,9 @@
 
 #include "lmptype.h"
 #include "sph_astro_iact.h"
+#include "sph_astro_eos.h"
+#include "sph_astro_fields.h"
+#include "sph_astro_options.h"
 #include "sph_astro_pair_loop.h"
 
 namespace LAMMPS_NS {
@@ -29,30 +32,6 @@ class Pair;
 }    // namespace LAMMPS_NS
 
 namespace SPHAstro {
-
-// per-atom results of the passes (owned + ghost atoms); null where the scene does not need one
-struct Fields {
-  double *pressure = nullptr;      // P
-  double *soundspeed = nullptr;    // c_s
-  double *vdotgradw = nullptr;     // sum_j m_j v_ij . grad_i W_ij (= -rho_i div v_i)
-  double *divv = nullptr;          // div v
-  double *nneigh = nullptr;        // neighbours inside the kernel support
-  double *omega = nullptr;         // grad-h factor Omega (1 without grad-h terms)
-  double **dcurl = nullptr;        // sums for div v and curl v: v_ij . grad W, v_ij x grad W
-  double *curlv = nullptr;         // |curl v|
-  double *balsara = nullptr;       // Balsara factor of this step
-  double *vsigmax = nullptr;       // signal viscosity: max_j v_sig,ij
-  double **vgsum = nullptr;        // reconstruction: the sums M, G of grad v = G M^-1
-  double **vgrad = nullptr;        // reconstruction: symmetric grad v and spacing Delta
-  double *condrate = nullptr;      // artificial conductivity: sum_j m_j k_ij |dW/dr| r
-  double *pe_gradh = nullptr;      // pressure-energy with grad-h terms: C_i
-  // the per-particle factor of the pressure term: sqrt(P)/rho (pressure geometric) or
-  // e = (gamma-1) u = P/rho (pressure-energy)
-  double *pressure_factor = nullptr;
-  double *energy_sum = nullptr;
-  double *prho = nullptr;          // the pressure term's P/(Omega rho^2), g or e/P (force pass)    // pressure-energy with grad-h: sum_j m_j u_j W(h_i)
-  double *conduct = nullptr;       // physical heat conduction: du/dt of this step
-};
 
 // what every pass sees
 struct PassContext {
@@ -119,6 +98,9 @@ void finish_curl(const PassContext &ctx, bool omega, bool balsara);
 // sums follow from G
 void finish_velocity_gradient(const PassContext &ctx, double trigger, bool curl);
 
+// the force settings of a scene's options; gradh: fix sph/astro/h iterate; per_particle_alpha:
+// a viscosity switch
+ForceSettings force_settings(const PairOptions &o, bool gradh, bool per_particle_alpha);
 // accelerations, du/dt and div v; two_h: grad-h or averaged kernel (average)
 void force_pass(const PassContext &ctx, const ForceSettings &s, bool two_h, bool average);
 // after the ghosts' parts are summed: div v (and, with pressure-energy, the P dV sum / e_i)
@@ -126,6 +108,17 @@ void finish_force(const PassContext &ctx, const ForceSettings &s);
 
 // physical heat conduction into f->conduct; two_h: mean of dW/dr at h_i and h_j
 void conduction_pass(const PassContext &ctx, double kappa, bool two_h);
+
+// thermal entropy state: A, its prediction, dA/dt, and u (A from u)
+struct EntropyArrays {
+  double *A, *Aest, *dAdt;
+  const double *u;
+};
+void equation_of_state(const PassContext &ctx, const EOS &eos, const double *hcap_type,
+                       bool density_continuity, const EntropyArrays *entropy, bool init_entropy);
+void pressure_energy_density(const PassContext &ctx, const double *energy_sum);
+void thermal_rates(const PassContext &ctx, const EOS &eos, bool omega, bool pdv_done,
+                   double *dAdt);
 
 // XSPH drift correction over a full list (mean h): dv_i = eps sum_j m_j/rho_ij (v_j - v_i) W_ij
 void xsph_pass(const PassContext &ctx, const NeighView &full, double eps, double **out);
