@@ -51,10 +51,10 @@ Pair random_pair(std::mt19937 &gen, bool approaching, PressureForm form)
     q->vz = s(gen);
     // the per-particle factor of each pressure form: P/(Omega rho^2), sqrt(P)/rho, e/P
     const double omega = 0.8 + 0.3 * u(gen);
-    q->prho = form == PressureForm::GEOMETRIC ? pressure_geometric_factor(q->P, q->rho)
+    q->prho = form == PressureForm::GEOMETRIC   ? pressure_geometric_factor(q->P, q->rho)
         : form == PressureForm::PRESSURE_ENERGY ? e / q->P
                                                 : q->P / (omega * q->rho * q->rho);
-    q->b = form == PressureForm::GEOMETRIC ? q->prho
+    q->b = form == PressureForm::GEOMETRIC      ? q->prho
         : form == PressureForm::PRESSURE_ENERGY ? e
                                                 : 1.0;
     q->w = form == PressureForm::PRESSURE_ENERGY ? e : 1.0;
@@ -69,9 +69,10 @@ Pair random_pair(std::mt19937 &gen, bool approaching, PressureForm form)
   p.dx = s(gen);
   p.dy = s(gen);
   p.dz = s(gen);
-  const double vdotr = (p.i.vx - p.j.vx) * p.dx + (p.i.vy - p.j.vy) * p.dy + (p.i.vz - p.j.vz) * p.dz;
-  if ((vdotr < 0.0) != approaching) std::swap(p.i.vx, p.j.vx), std::swap(p.i.vy, p.j.vy),
-                                        std::swap(p.i.vz, p.j.vz);
+  const double vdotr =
+      (p.i.vx - p.j.vx) * p.dx + (p.i.vy - p.j.vy) * p.dy + (p.i.vz - p.j.vz) * p.dz;
+  if ((vdotr < 0.0) != approaching)
+    std::swap(p.i.vx, p.j.vx), std::swap(p.i.vy, p.j.vy), std::swap(p.i.vz, p.j.vz);
   p.g.r2 = p.dx * p.dx + p.dy * p.dy + p.dz * p.dz;
   p.g.r = std::sqrt(p.g.r2);
   p.g.dwi = -u(gen);    // (dW/dr)/r < 0
@@ -156,17 +157,21 @@ TEST(PairInteraction, SymmetricAndConservativeForEveryOptionCombination)
       const double d_force = std::fabs(ij.fpair - ji.fpair) / scale;
       EXPECT_LT(d_force, 1e-13) << describe(s);
       // each partner's sums are the same from either side
-      for (auto [a, b] : {std::pair<double, double>{ij.vgw_i, ji.vgw_j}, {ij.vgw_j, ji.vgw_i},
-                          {ij.heat_i, ji.heat_j}, {ij.heat_j, ji.heat_i}, {ij.crate_i, ji.crate_j},
-                          {ij.crate_j, ji.crate_i}, {ij.vsig, ji.vsig}}) {
+      for (auto [a, b] : {std::pair<double, double>{ij.vgw_i, ji.vgw_j},
+                          {ij.vgw_j, ji.vgw_i},
+                          {ij.heat_i, ji.heat_j},
+                          {ij.heat_j, ji.heat_i},
+                          {ij.crate_i, ji.crate_j},
+                          {ij.crate_j, ji.crate_i},
+                          {ij.vsig, ji.vsig}}) {
         const double d = std::fabs(a - b) / (std::fabs(a) + std::fabs(b) + 1e-300);
         EXPECT_LT(d, 1e-13) << describe(s);
         worst_symmetry = std::max(worst_symmetry, std::max(d, d_force));
       }
       // energy: m_i du_i + m_j du_j + (v_i - v_j) . r_ij fpair = 0
       if (!s.energy) continue;
-      const double vdotr = (p.i.vx - p.j.vx) * p.dx + (p.i.vy - p.j.vy) * p.dy +
-          (p.i.vz - p.j.vz) * p.dz;
+      const double vdotr =
+          (p.i.vx - p.j.vx) * p.dx + (p.i.vy - p.j.vy) * p.dy + (p.i.vz - p.j.vz) * p.dz;
       const double thermal = p.i.m * dudt_of(s, p.i, ij.vgw_i, ij.heat_i) +
           p.j.m * dudt_of(s, p.j, ij.vgw_j, ij.heat_j);
       const double work = vdotr * ij.fpair;
@@ -237,7 +242,8 @@ TEST(PairInteraction, PairKernelForms)
   EXPECT_DOUBLE_EQ(g.dwj, mean);
   double w;
   ASSERT_TRUE((pair_kernel_value<KernelCubic, 3, true>(kern, ki, hj, r * r, w)));
-  EXPECT_NEAR(w, 0.5 * (kernel_W(KernelType::CUBIC, 3, r, hi) + kernel_W(KernelType::CUBIC, 3, r, hj)),
+  EXPECT_NEAR(w,
+              0.5 * (kernel_W(KernelType::CUBIC, 3, r, hi) + kernel_W(KernelType::CUBIC, 3, r, hj)),
               1e-13);
   // r = 1.7: outside 2 h_ij = 1.3 and both supports 2 h_i = 1.0, 2 h_j = 1.6
   EXPECT_FALSE((pair_kernel_gradient<KernelCubic, 3, false>(kern, ki, hj, 1.7 * 1.7, false, g)));
@@ -264,7 +270,8 @@ TEST(PairInteraction, DensityTerms)
   const double sigma = KernelCubic::sigma(3);
   const double dwdh = sigma / std::pow(h, 4) * sums.dwdh / m;
   const double eps = 1e-6;
-  const double fd = (kernel_W(KernelType::CUBIC, 3, r, h + eps) -
-                     kernel_W(KernelType::CUBIC, 3, r, h - eps)) / (2 * eps);
+  const double fd =
+      (kernel_W(KernelType::CUBIC, 3, r, h + eps) - kernel_W(KernelType::CUBIC, 3, r, h - eps)) /
+      (2 * eps);
   EXPECT_NEAR(dwdh, fd, 1e-7);
 }

@@ -52,25 +52,8 @@ TEST(PressureGeometric, TermIsTheGeometricMeanOfPOverRhoSquared)
   EXPECT_NEAR(pressure_geometric_term(g, g), 2.0 * 0.7 / (1.1 * 1.1), 1e-15);
 }
 
-// One pair with the geometric pressure force and its energy equation: the thermal energy the
-// pair gains is the kinetic energy it loses, m_i du_i + m_j du_j = -(v_i . F_i + v_j . F_j)
-TEST(PressureGeometric, PairConservesEnergy)
-{
-  const double mi = 0.3, mj = 0.7, gi = pressure_geometric_factor(1.3, 0.9),
-               gj = pressure_geometric_factor(0.2, 0.4);
-  const double rij[3] = {0.3, -0.2, 0.5}, vi[3] = {0.1, 0.4, -0.3}, vj[3] = {-0.2, 0.1, 0.6};
-  const double dwdr_r = -1.7;    // (dW/dr)/r < 0: grad_i W_ij = r_ij dwdr_r
-  double vdotr = 0.0, work = 0.0;
-  for (int d = 0; d < 3; d++) vdotr += (vi[d] - vj[d]) * rij[d];
-  // F_i = -m_i m_j 2 g_i g_j grad_i W_ij = -F_j
-  for (int d = 0; d < 3; d++) {
-    const double fi = -mi * mj * pressure_geometric_term(gi, gj) * rij[d] * dwdr_r;
-    work += vi[d] * fi - vj[d] * fi;
-  }
-  // du_i/dt = m_j g_i g_j v_ij . grad_i W_ij, du_j/dt = m_i g_j g_i v_ji . grad_j W_ji (same)
-  const double dui = mj * gi * gj * vdotr * dwdr_r, duj = mi * gj * gi * vdotr * dwdr_r;
-  EXPECT_NEAR(mi * dui + mj * duj, -work, 1e-15);
-}
+// (the energy of a pair with the geometric pressure term: test_iact.cpp, which calls the
+// interaction the pair loop runs)
 
 // Continuity equation (Monaghan 1992, ARA&A 30, 543): zero for equal velocities whatever the
 // kernel; a pair

@@ -30,6 +30,11 @@ using namespace LAMMPS_NS;
 ComputeSPHAstroAtom::ComputeSPHAstroAtom(LAMMPS *lmp, int narg, char **arg) :
     Compute(lmp, narg, arg)
 {
+  nmax_ = 0;
+  vector_ = nullptr;
+  array_ = nullptr;
+  pair_ = nullptr;
+
   static const char *names[] = {"rho",    "h",    "pressure", "cs",    "u",
                                 "nneigh", "divv", "dudt",     "omega", "alpha"};
   const int nnames = sizeof(names) / sizeof(names[0]);

@@ -36,11 +36,11 @@ class ComputeSPHAstroAtom : public Compute {
  private:
   enum Field { RHO, H, PRESSURE, SOUNDSPEED, U, NNEIGH, DIVV, DUDT, OMEGA, ALPHA };
   std::vector<Field> fields_;
-  int nmax_ = 0;
-  double *vector_ = nullptr;
-  double **array_ = nullptr;
+  int nmax_;
+  double *vector_;
+  double **array_;
   SPHAstro::StateIndex state_;
-  class PairSPHAstro *pair_ = nullptr;
+  class PairSPHAstro *pair_;
 };
 
 }    // namespace LAMMPS_NS

@@ -41,6 +41,12 @@ using namespace LAMMPS_NS;
 ComputeSPHAstroGlobal::ComputeSPHAstroGlobal(LAMMPS *lmp, int narg, char **arg) :
     Compute(lmp, narg, arg)
 {
+  pair_ = nullptr;
+  fix_ = nullptr;
+  hfix_ = nullptr;
+  own_reference_set_ = false;
+  own_reference_ = 0.0;
+
   if (narg != 3)
     error->all(FLERR, "compute sph/astro/global takes no arguments (got {})", narg - 3);
   vector_flag = 1;

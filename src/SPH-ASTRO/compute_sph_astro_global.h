@@ -54,11 +54,11 @@ class ComputeSPHAstroGlobal : public Compute {
 
  private:
   SPHAstro::StateIndex state_;
-  class PairSPHAstro *pair_ = nullptr;
-  class FixSPHAstro *fix_ = nullptr;
-  class Fix *hfix_ = nullptr;    // fix sph/astro/h, for the h-iteration statistics
-  bool own_reference_set_ = false;
-  double own_reference_ = 0.0;
+  class PairSPHAstro *pair_;
+  class FixSPHAstro *fix_;
+  class Fix *hfix_;    // fix sph/astro/h, for the h-iteration statistics
+  bool own_reference_set_;
+  double own_reference_;
 };
 
 }    // namespace LAMMPS_NS

@@ -60,6 +60,38 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), state_(new StateIndex()), entropy_index_(new EntropyIndex()),
     continuity_index_(new ContinuityIndex())
 {
+  courant_ = 0.3;
+  force_factor_ = 0.3;
+  energy_factor_ = 0.3;
+  cond_factor_ = 0.1;
+  condu_factor_ = 0.5;
+  dtmax_ = 0.0;
+  dtmin_ = 0.0;
+  tend_ = -1.0;
+  adaptive_ = true;
+  stopped_at_tend_ = false;
+  pair_ = nullptr;
+  hfix_ = nullptr;
+  evolve_u_ = true;
+  entropy_ = false;
+  entropy_flag_ = 0;
+  entropy_needs_init_ = true;
+  continuity_ = false;
+  density_needs_init_ = true;
+  predicted_step_ = -1;
+  state_hash_ = 0;
+  dt_pending_ = false;
+  user_dt_ = 0.0;
+  xsph_eps_ = 0.0;
+  xsph_ = nullptr;
+  xsph_nmax_ = 0;
+  xsph_list_ = nullptr;
+  last_dt_cv_ = 0.0;
+  last_dt_force_ = 0.0;
+  last_dt_energy_ = 0.0;
+  last_dt_cond_ = 0.0;
+  last_limiting_atom_ = 0;
+
   time_integrate = 1;
   restart_global = 1;
   scalar_flag = 1;    // current dt
@@ -642,7 +674,7 @@ void FixSPHAstro::xsph_correction()
   PassContext ctx{};
   ctx.kernel = pair_->options().kernel;
   ctx.dim = domain->dimension;
-  ctx.p = {atom->x,      atom->dvector[state_->h], atom->type, atom->rmass, atom->mass,
+  ctx.p = {atom->x,      atom->dvector[state_->h],   atom->type, atom->rmass, atom->mass,
            atom->nlocal, atom->nlocal + atom->nghost};
   ctx.rho = pair_->eval_density();    // that of the force evaluation (ghosts too)
   ctx.vest = atom->darray[state_->vest];

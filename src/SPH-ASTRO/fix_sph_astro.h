@@ -56,52 +56,52 @@ class FixSPHAstro : public Fix {
   double reference_energy(const std::string &compute_id, double current);
 
  protected:
-  double courant_ = 0.3;          // C in dt = C h / (c + h|div v| + 1.2 (alpha c + beta h|div v|))
-  double force_factor_ = 0.3;     // C_f in dt = C_f sqrt(h / |a|)
-  double energy_factor_ = 0.3;    // C_u in dt = C_u u / |du/dt| (where du/dt < 0)
-  double cond_factor_ = 0.1;      // C_k in dt = C_k rho h^2 / kappa (pair conduction KAPPA)
+  double courant_;          // C in dt = C h / (c + h|div v| + 1.2 (alpha c + beta h|div v|))
+  double force_factor_;     // C_f in dt = C_f sqrt(h / |a|)
+  double energy_factor_;    // C_u in dt = C_u u / |du/dt| (where du/dt < 0)
+  double cond_factor_;      // C_k in dt = C_k rho h^2 / kappa (pair conduction KAPPA)
   // C_a in dt = C_a / sum_j k_ij, the rate of the artificial conductivity (pair conductivity)
-  double condu_factor_ = 0.5;
-  double dtmax_ = 0.0;    // 0: no upper bound
-  double dtmin_ = 0.0;    // 0: no lower bound (a step below it is an error)
-  double tend_ = -1.0;    // < 0: no end time
-  bool adaptive_ = true;
-  bool stopped_at_tend_ = false;
+  double condu_factor_;
+  double dtmax_;    // 0: no upper bound
+  double dtmin_;    // 0: no lower bound (a step below it is an error)
+  double tend_;     // < 0: no end time
+  bool adaptive_;
+  bool stopped_at_tend_;
 
   SPHAstro::StateIndex *state_;
-  class PairSPHAstro *pair_ = nullptr;
-  class FixSPHAstroH *hfix_ = nullptr;    // variable h: advanced in the drift
-  bool evolve_u_ = true;
-  bool entropy_ = false;
-  int entropy_flag_ = 0;    // extract("entropy")
+  class PairSPHAstro *pair_;
+  class FixSPHAstroH *hfix_;    // variable h: advanced in the drift
+  bool evolve_u_;
+  bool entropy_;
+  int entropy_flag_;    // extract("entropy")
   // A from u (entropy), rho from one summation (density continuity) at the next force
   // evaluation: pair sph/astro is told at init, and has done it by setup
-  bool entropy_needs_init_ = true;
+  bool entropy_needs_init_;
   SPHAstro::EntropyIndex *entropy_index_;
   // pair sph/astro density continuity: rho is integrated like u, with the prediction d_rhoest
-  bool continuity_ = false;
-  bool density_needs_init_ = true;
+  bool continuity_;
+  bool density_needs_init_;
   SPHAstro::ContinuityIndex *continuity_index_;
   bool pair_has_continuity() const;
 
   // restart state
-  bigint predicted_step_ = -1;    // step at which d2_vest/d_uest hold predictions
-  uint64_t state_hash_ = 0;       // hash of v and u (and rho with density continuity) when
-                                  // the last run ended
+  bigint predicted_step_;    // step at which d2_vest/d_uest hold predictions
+  uint64_t state_hash_;      // hash of v and u (and rho with density continuity) when
+                             // the last run ended
   std::map<std::string, double> reference_energy_;
-  bool dt_pending_ = false;    // first dt of a run: set once all setup forces are in
-  double user_dt_ = 0.0;       // with dt fixed: the step to restore after a tend clip
+  bool dt_pending_;    // first dt of a run: set once all setup forces are in
+  double user_dt_;     // with dt fixed: the step to restore after a tend clip
 
   // XSPH: positions drift with v + eps sum_j m_j / rho_ij (v_j - v_i) W_ij; the correction is
   // computed after each force evaluation over a full neighbour list
-  double xsph_eps_ = 0.0;      // 0: off (no list, no pass)
-  double **xsph_ = nullptr;    // per-atom correction (owned atoms), also the fix's per-atom output
-  int xsph_nmax_ = 0;
-  class NeighList *xsph_list_ = nullptr;
+  double xsph_eps_;    // 0: off (no list, no pass)
+  double **xsph_;      // per-atom correction (owned atoms), also the fix's per-atom output
+  int xsph_nmax_;
+  class NeighList *xsph_list_;
   void xsph_correction();
 
-  double last_dt_cv_ = 0.0, last_dt_force_ = 0.0, last_dt_energy_ = 0.0, last_dt_cond_ = 0.0;
-  tagint last_limiting_atom_ = 0;
+  double last_dt_cv_, last_dt_force_, last_dt_energy_, last_dt_cond_;
+  tagint last_limiting_atom_;
 
   void next_timestep(bool from_end_of_step = false);
   void set_timestep(double dt);

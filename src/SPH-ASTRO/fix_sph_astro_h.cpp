@@ -73,6 +73,20 @@ using namespace FixConst;
 FixSPHAstroH::FixSPHAstroH(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), state_(new SPHAstro::StateIndex())
 {
+  mode_ = Mode::ITERATE;
+  hfact_ = 1.2;
+  tolerance_ = 1e-4;
+  max_iterations_ = 30;
+  margin_ = 1.5;
+  rebuild_ = 0.0;
+  rebuild_requested_ = false;
+  rebuilds_ = 0;
+  collections_ = 0;
+  collection_rebuilds_ = 0;
+  prune_rebuilds_ = 0;
+  pair_ = nullptr;
+  iterate_flag_ = 1;
+
   vector_flag = 1;
   size_vector = 9;
   global_freq = 1;

@@ -57,24 +57,24 @@ class FixSPHAstroH : public Fix {
   void *extract(const char *, int &) override;
 
  protected:
-  Mode mode_ = Mode::ITERATE;
-  double hfact_ = 1.2;
-  double tolerance_ = 1e-4;
-  int max_iterations_ = 30;
-  double margin_ = 1.5;     // neighbour cutoffs allow h up to margin x the largest h at init
-  double rebuild_ = 0.0;    // stop the run when h > rebuild x cap (or < cap / margin^2); 0: off
-  bool rebuild_requested_ = false;
-  bigint rebuilds_ = 0;    // runs stopped for a rebuild since the fix was defined
+  Mode mode_;
+  double hfact_;
+  double tolerance_;
+  int max_iterations_;
+  double margin_;     // neighbour cutoffs allow h up to margin x the largest h at init
+  double rebuild_;    // stop the run when h > rebuild x cap (or < cap / margin^2); 0: off
+  bool rebuild_requested_;
+  bigint rebuilds_;    // runs stopped for a rebuild since the fix was defined
   // h collections for neighbor multi: 0 off, -1 auto (factor ~2 apart), else their number
-  int collections_ = 0;
-  bigint collection_rebuilds_ = 0;    // list builds forced because h outgrew its collection
-  bigint prune_rebuilds_ = 0;         // list builds forced because h neared its pruned list's limit
+  int collections_;
+  bigint collection_rebuilds_;    // list builds forced because h outgrew its collection
+  bigint prune_rebuilds_;         // list builds forced because h neared its pruned list's limit
   int outgrown_lists() const;
   void setup_collections();
 
   SPHAstro::StateIndex *state_;
-  class PairSPHAstro *pair_ = nullptr;
-  int iterate_flag_ = 1;    // extract("iterate")
+  class PairSPHAstro *pair_;
+  int iterate_flag_;    // extract("iterate")
 };
 
 }    // namespace LAMMPS_NS

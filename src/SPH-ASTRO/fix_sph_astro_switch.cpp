@@ -44,6 +44,15 @@ static constexpr const char *DIVV_PREV_FIX_ID = "SPH_ASTRO_DIVV_PREV";
 
 FixSPHAstroSwitch::FixSPHAstroSwitch(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
 {
+  form_ = Form::MORRIS_MONAGHAN;
+  alpha_min_ = 0.1;
+  alpha_max_ = 1.0;
+  ell_ = 0.1;
+  alpha_index_ = -1;
+  needs_curl_ = 0;
+  h_index_ = -1;
+  pair_ = nullptr;
+
   vector_flag = 1;
   size_vector = 2;
   global_freq = 1;

@@ -50,13 +50,13 @@ class FixSPHAstroSwitch : public Fix {
 
  protected:
   enum class Form { MORRIS_MONAGHAN, CULLEN_DEHNEN };
-  Form form_ = Form::MORRIS_MONAGHAN;
-  double alpha_min_ = 0.1, alpha_max_ = 1.0, ell_ = 0.1;
-  int alpha_index_ = -1;
+  Form form_;
+  double alpha_min_, alpha_max_, ell_;
+  int alpha_index_;
   double *divv_prev();    // d_divv_prev (Cullen-Dehnen)
-  int needs_curl_ = 0;
-  int h_index_ = -1;    // d_h
-  class PairSPHAstro *pair_ = nullptr;
+  int needs_curl_;
+  int h_index_;    // d_h
+  class PairSPHAstro *pair_;
 };
 
 }    // namespace LAMMPS_NS

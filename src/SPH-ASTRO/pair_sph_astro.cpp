@@ -49,12 +49,11 @@ using namespace SPHAstro;
 PairSPHAstro::PairSPHAstro(LAMMPS *lmp) :
     Pair(lmp), opt_(new PairOptions()), fields_(new Fields()), lists_(new NeighbourLists(lmp)),
     hstats_(new GradhStatistics()), state_(new StateIndex()), entropy_index_(new EntropyIndex()),
-    continuity_index_(new ContinuityIndex()), hmode_(HMode::FIXED), hfact_(1.2),
-    h_tolerance_(1e-4), h_margin_(1.0), h_max_iterations_(30), entropy_(false), switch_(false),
-    curl_on_(false), entropy_init_pending_(false), density_init_pending_(false),
-    alpha_atom_(nullptr), hcap_type_(nullptr), kernel_radius_(2.0), h_failures_(0), prune_atom_fallbacks_(0),
-    counts_step_(-1), computed_step_(-1), computed_nlocal_(-1),
-    comm_table_(new CommTable())
+    continuity_index_(new ContinuityIndex()), hmode_(HMode::FIXED), hfact_(1.2), h_tolerance_(1e-4),
+    h_margin_(1.0), h_max_iterations_(30), entropy_(false), switch_(false), curl_on_(false),
+    entropy_init_pending_(false), density_init_pending_(false), alpha_atom_(nullptr),
+    hcap_type_(nullptr), kernel_radius_(2.0), h_failures_(0), prune_atom_fallbacks_(0),
+    counts_step_(-1), computed_step_(-1), computed_nlocal_(-1), comm_table_(new CommTable())
 {
   single_enable = 0;
   restartinfo = 1;
@@ -256,7 +255,7 @@ PassContext PairSPHAstro::context()
   PassContext ctx;
   ctx.kernel = opt_->kernel;
   ctx.dim = domain->dimension;
-  ctx.p = {atom->x,         atom->dvector[state_->h], atom->type, atom->rmass, atom->mass,
+  ctx.p = {atom->x,      atom->dvector[state_->h],   atom->type, atom->rmass, atom->mass,
            atom->nlocal, atom->nlocal + atom->nghost};
   ctx.half = {0, nullptr, nullptr, nullptr};
   ctx.newton = force->newton_pair != 0;
@@ -322,9 +321,9 @@ void PairSPHAstro::density_stage(PassContext &ctx)
   const PairOptions &o = *opt_;
   Fields &f = *fields_;
   double *h = atom->dvector[state_->h];
-  if (hmode_ == HMode::DHDT) forward({{h, nullptr, 1, false}});    // the ghosts' h of this step
-  counts_step_ = update->ntimestep;                                  // a density pass counts
-  if (o.pressure_energy) forward({{ctx.uest, nullptr, 1, false}});   // the ghosts' u
+  if (hmode_ == HMode::DHDT) forward({{h, nullptr, 1, false}});       // the ghosts' h of this step
+  counts_step_ = update->ntimestep;                                   // a density pass counts
+  if (o.pressure_energy) forward({{ctx.uest, nullptr, 1, false}});    // the ghosts' u
   if (gradh()) {
     GradhSettings s;
     s.hfact = hfact_;
@@ -393,7 +392,8 @@ void PairSPHAstro::force_stage(PassContext &ctx)
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
   if (o.pressure_geometric)    // g = sqrt(P)/rho of owned and ghost atoms
-    for (int i = 0; i < nall; i++) f.pressure_factor[i] = pressure_geometric_factor(f.pressure[i], ctx.rho[i]);
+    for (int i = 0; i < nall; i++)
+      f.pressure_factor[i] = pressure_geometric_factor(f.pressure[i], ctx.rho[i]);
   else if (o.pressure_energy)    // (gamma-1) u = P/rho of owned and ghost atoms
     for (int i = 0; i < nall; i++) f.pressure_factor[i] = f.pressure[i] / ctx.rho[i];
 

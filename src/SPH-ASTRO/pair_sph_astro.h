@@ -136,9 +136,9 @@ class PairSPHAstro : public Pair {
   HMode hmode_;
   double hfact_, h_tolerance_, h_margin_;
   int h_max_iterations_;
-  bool entropy_;            // fix sph/astro thermal entropy: P = A rho^gamma
-  bool switch_;             // fix sph/astro/switch: per-particle alpha (d_alpha)
-  bool curl_on_;            // curl v needed (Balsara or the Cullen-Dehnen switch)
+  bool entropy_;    // fix sph/astro thermal entropy: P = A rho^gamma
+  bool switch_;     // fix sph/astro/switch: per-particle alpha (d_alpha)
+  bool curl_on_;    // curl v needed (Balsara or the Cullen-Dehnen switch)
   bool entropy_init_pending_, density_init_pending_;
   double *alpha_atom_;
   double *hcap_type_;       // margin x the largest h of each type at init

@@ -44,9 +44,9 @@
 #include "pair_sph_astro_gravity.h"
 
 #include "pair_sph_astro.h"
-#include "sph_astro_options.h"
 #include "sph_astro_gravity_kernel.h"
 #include "sph_astro_gravity_kspace.h"
+#include "sph_astro_options.h"
 
 #include "sph_astro_pair_coeff.h"
 

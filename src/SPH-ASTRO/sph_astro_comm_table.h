@@ -103,7 +103,6 @@ class CommTable {
  private:
   Field fields_[MAX_FIELDS];
   int n_ = 0, size_ = 0;
-
 };
 
 }    // namespace SPHAstro

@@ -35,7 +35,7 @@ namespace {
     const Particles &p;
     const double *u;    // weights m u (pressure-energy), else null
     double *rho, *nneigh;
-    double w0;          // sigma w(0) / h^d without the 1/h^d
+    double w0;    // sigma w(0) / h^d without the 1/h^d
     int dim;
     struct Own {
       double weight, rho, n;
@@ -133,26 +133,27 @@ namespace {
         double vsum[4] = {0.0, 0.0, 0.0, 0.0};
         double gsum[VGRAD_SUMS] = {};
         ni = 0.0;
-        gather_row(x, i, jlist, jnum, R2 * hi * hi, [&](int j, double dx, double dy, double dz, double r2) {
-          const double r = std::sqrt(r2);
-          const double q = r * hinv;
-          const double mj = p.mass_of(j);
-          const double w = K::w(q), dw = K::dw(q);
-          mass.add(mj, w, dw, q, DIM);
-          if constexpr (pe) energy.add(mj * uest[j], w, dw, q, DIM);
-          ni += 1.0;
-          if constexpr (curl || gradient) {
-            if (r2 == 0.0) return;
-            const double dvx = vest[i][0] - vest[j][0], dvy = vest[i][1] - vest[j][1],
-                         dvz = vest[i][2] - vest[j][2];
-            if (curl) {
-              double c[4];
-              iact_velocity_curl(dvx, dvy, dvz, dx, dy, dz, mj * dw / r, c);
-              for (int k = 0; k < 4; k++) vsum[k] += c[k];
-            } else
-              velocity_gradient_add(gsum, mj * dw / r, dvx, dvy, dvz, dx, dy, dz);
-          }
-        });
+        gather_row(x, i, jlist, jnum, R2 * hi * hi,
+                   [&](int j, double dx, double dy, double dz, double r2) {
+                     const double r = std::sqrt(r2);
+                     const double q = r * hinv;
+                     const double mj = p.mass_of(j);
+                     const double w = K::w(q), dw = K::dw(q);
+                     mass.add(mj, w, dw, q, DIM);
+                     if constexpr (pe) energy.add(mj * uest[j], w, dw, q, DIM);
+                     ni += 1.0;
+                     if constexpr (curl || gradient) {
+                       if (r2 == 0.0) return;
+                       const double dvx = vest[i][0] - vest[j][0], dvy = vest[i][1] - vest[j][1],
+                                    dvz = vest[i][2] - vest[j][2];
+                       if (curl) {
+                         double c[4];
+                         iact_velocity_curl(dvx, dvy, dvz, dx, dy, dz, mj * dw / r, c);
+                         for (int k = 0; k < 4; k++) vsum[k] += c[k];
+                       } else
+                         velocity_gradient_add(gsum, mj * dw / r, dvx, dvy, dvz, dx, dy, dz);
+                     }
+                   });
         if (curl)    // grad_i W = sigma h^-(d+1) w'(q) r_ij / r
           for (int k = 0; k < 4; k++) curl_sum[k] = norm * hinv * vsum[k];
         if (gradient)
@@ -263,10 +264,12 @@ void density_gradh(const PassContext &ctx, const GradhSettings &s, GradhStatisti
     const bool pe = s.pressure_energy;
     switch (s.sums) {
       case VelocitySums::NONE:
-        pe ? gradh_loop<K, D, NONE, true>(ctx, s, stats) : gradh_loop<K, D, NONE, false>(ctx, s, stats);
+        pe ? gradh_loop<K, D, NONE, true>(ctx, s, stats)
+           : gradh_loop<K, D, NONE, false>(ctx, s, stats);
         break;
       case VelocitySums::CURL:
-        pe ? gradh_loop<K, D, CURL, true>(ctx, s, stats) : gradh_loop<K, D, CURL, false>(ctx, s, stats);
+        pe ? gradh_loop<K, D, CURL, true>(ctx, s, stats)
+           : gradh_loop<K, D, CURL, false>(ctx, s, stats);
         break;
       case VelocitySums::GRADIENT:
         pe ? gradh_loop<K, D, GRADIENT, true>(ctx, s, stats)

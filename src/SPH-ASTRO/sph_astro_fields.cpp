@@ -51,9 +51,9 @@ void Fields::grow(LAMMPS_NS::Memory *memory, int n, const Needs &needs)
 
 void Fields::destroy(LAMMPS_NS::Memory *memory)
 {
-  for (double **a : {&pressure, &soundspeed, &vdotgradw, &divv, &nneigh, &omega, &prho, &curlv,
-                     &balsara, &vsigmax, &condrate, &pe_gradh, &pressure_factor, &energy_sum,
-                     &conduct})
+  for (double **a :
+       {&pressure, &soundspeed, &vdotgradw, &divv, &nneigh, &omega, &prho, &curlv, &balsara,
+        &vsigmax, &condrate, &pe_gradh, &pressure_factor, &energy_sum, &conduct})
     memory->destroy(*a);
   memory->destroy(dcurl);
   memory->destroy(vgsum);
@@ -64,8 +64,8 @@ void Fields::destroy(LAMMPS_NS::Memory *memory)
 double Fields::memory_usage() const
 {
   int arrays = 7;
-  for (const double *a : {curlv, balsara, vsigmax, condrate, pe_gradh, pressure_factor,
-                          energy_sum, conduct})
+  for (const double *a :
+       {curlv, balsara, vsigmax, condrate, pe_gradh, pressure_factor, energy_sum, conduct})
     if (a) arrays++;
   if (dcurl) arrays += 4;
   if (vgsum) arrays += VGRAD_SUMS + VGRAD_DATA;

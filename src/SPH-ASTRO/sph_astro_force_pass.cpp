@@ -17,11 +17,13 @@
 
 #include "pair.h"
 
+#include <type_traits>
+
 namespace SPHAstro {
 namespace {
 
-  // VISC, EXTRAS: the variant of iact_force (sph_astro_iact.h) this scene needs
-  template <int VISC, bool EXTRAS> struct ForceAdapter {
+  // VISC, LEVEL: the variant of iact_force (sph_astro_iact.h) this scene needs
+  template <int VISC, int LEVEL> struct ForceAdapter {
     static constexpr KernelUse use = KernelUse::GRADIENT;
     const PassContext &ctx;
     const ForceSettings s;    // a copy: no store to a double array can change it
@@ -42,21 +44,24 @@ namespace {
       q.c = f.soundspeed[i];
       q.h = ctx.p.h[i];
       q.prho = prho[i];
-      if (EXTRAS) {
+      if (LEVEL == FORCE_ALL) {
         q.b = b ? b[i] : 1.0;
         q.w = w ? w[i] : 1.0;
         q.C = C ? C[i] : 0.0;
-        q.alpha = s.alpha_per_particle ? ctx.alpha[i] : s.alpha;
         q.shear = s.balsara ? f.balsara[i] : 1.0;
-        q.u = s.alpha_u > 0.0 ? ctx.uest[i] : 0.0;
         q.vgrad = s.reconstruct ? f.vgrad[i] : nullptr;
       } else {
         q.b = q.w = 1.0;
         q.C = 0.0;
-        q.alpha = s.alpha;
         q.shear = 1.0;
-        q.u = 0.0;
         q.vgrad = nullptr;
+      }
+      if (LEVEL >= FORCE_COMMON) {
+        q.alpha = s.alpha_per_particle ? ctx.alpha[i] : s.alpha;
+        q.u = s.alpha_u > 0.0 ? ctx.uest[i] : 0.0;
+      } else {
+        q.alpha = s.alpha;
+        q.u = 0.0;
       }
       q.vx = ctx.vest[i][0];
       q.vy = ctx.vest[i][1];
@@ -73,7 +78,7 @@ namespace {
       ForceParticle pj;
       load(j, pj);
       ForceContribution c;
-      iact_force<VISC, EXTRAS>(s, own.pi, pj, dx, dy, dz, g, c);
+      iact_force<VISC, LEVEL>(s, own.pi, pj, dx, dy, dz, g, c);
       own.fx += dx * c.fpair;
       own.fy += dy * c.fpair;
       own.fz += dz * c.fpair;
@@ -87,8 +92,8 @@ namespace {
         force[j][2] -= dz * c.fpair;
         f.vdotgradw[j] += c.vgw_j;
         if (s.energy) dudt[j] += c.heat_j;
-        if (VISC == VISC_SIGNAL && c.vsig > f.vsigmax[j]) f.vsigmax[j] = c.vsig;
-        if (EXTRAS && s.alpha_u > 0.0) f.condrate[j] += c.crate_j;
+        if (s.signal && c.vsig > f.vsigmax[j]) f.vsigmax[j] = c.vsig;
+        if (LEVEL >= FORCE_COMMON && s.alpha_u > 0.0) f.condrate[j] += c.crate_j;
       }
       if (ctx.tally)
         ctx.tally->ev_tally(i, j, ctx.p.nlocal, ctx.newton, 0.0, 0.0, c.fpair, dx, dy, dz);
@@ -100,8 +105,8 @@ namespace {
       force[i][2] += own.fz;
       f.vdotgradw[i] += own.vgw;
       if (s.energy) dudt[i] += own.heat;
-      if (VISC == VISC_SIGNAL && own.vsig > f.vsigmax[i]) f.vsigmax[i] = own.vsig;
-      if (EXTRAS && s.alpha_u > 0.0) f.condrate[i] += own.crate;
+      if (s.signal && own.vsig > f.vsigmax[i]) f.vsigmax[i] = own.vsig;
+      if (LEVEL >= FORCE_COMMON && s.alpha_u > 0.0) f.condrate[i] += own.crate;
     }
   };
 
@@ -110,9 +115,9 @@ namespace {
 ForceSettings force_settings(const PairOptions &o, bool gradh, bool per_particle_alpha)
 {
   ForceSettings s;
-  s.pressure = o.pressure_energy  ? PressureForm::PRESSURE_ENERGY
-      : o.pressure_geometric      ? PressureForm::GEOMETRIC
-                                  : PressureForm::STANDARD;
+  s.pressure = o.pressure_energy ? PressureForm::PRESSURE_ENERGY
+      : o.pressure_geometric     ? PressureForm::GEOMETRIC
+                                 : PressureForm::STANDARD;
   s.viscosity = o.has_viscosity();
   s.signal = o.signal_viscosity();
   s.reconstruct = o.reconstruction();
@@ -155,29 +160,36 @@ void force_pass(const PassContext &ctx, const ForceSettings &s, bool two_h, bool
   const double *b = (pe || geo) ? f.pressure_factor : nullptr;
   const double *w = pe ? f.pressure_factor : nullptr;
   const double *C = (pe && s.gradh) ? f.pe_gradh : nullptr;
-  // templates where they pay (doc/architecture.md): the viscosity form and whether any of
-  // Balsara, reconstruction, a switch, conductivity or another pressure form is on
+  // templates where they pay (doc/performance.md): the viscosity form, and which of the
+  // switch's alpha, conductivity, Balsara, reconstruction and the other pressure forms may act
   const int visc = !s.viscosity ? VISC_NONE : signal ? VISC_SIGNAL : VISC_CLASSIC;
-  const bool extras = s.balsara || s.reconstruct || s.alpha_per_particle || s.alpha_u > 0.0 ||
-      s.pressure != PressureForm::STANDARD;
+  const int level = (s.balsara || s.reconstruct || s.pressure != PressureForm::STANDARD) ? FORCE_ALL
+      : (s.alpha_per_particle || s.alpha_u > 0.0) ? FORCE_COMMON
+                                                  : FORCE_PLAIN;
   with_variant(ctx.kernel, ctx.dim, two_h, [&](auto v) {
     using V = decltype(v);
     auto run = [&](auto adapter) {
       pair_loop<typename V::kernel, V::dim, V::two_h>(ctx.half, ctx.p, ctx.newton, average,
                                                       adapter);
     };
-    if (visc == VISC_NONE && !extras)
-      run(ForceAdapter<VISC_NONE, false>{ctx, settings, f, ctx.force, ctx.dudt, f.prho, b, w, C});
+    auto adapter = [&](auto visc_tag, auto level_tag) {
+      constexpr int VISC = decltype(visc_tag)::value, LEVEL = decltype(level_tag)::value;
+      run(ForceAdapter<VISC, LEVEL>{ctx, settings, f, ctx.force, ctx.dudt, f.prho, b, w, C});
+    };
+    using Plain = std::integral_constant<int, FORCE_PLAIN>;
+    using Common = std::integral_constant<int, FORCE_COMMON>;
+    if (level == FORCE_ALL)
+      adapter(std::integral_constant<int, VISC_RUNTIME>(),
+              std::integral_constant<int, FORCE_ALL>());
     else if (visc == VISC_NONE)
-      run(ForceAdapter<VISC_NONE, true>{ctx, settings, f, ctx.force, ctx.dudt, f.prho, b, w, C});
-    else if (visc == VISC_CLASSIC && !extras)
-      run(ForceAdapter<VISC_CLASSIC, false>{ctx, settings, f, ctx.force, ctx.dudt, f.prho, b, w, C});
+      level == FORCE_PLAIN ? adapter(std::integral_constant<int, VISC_NONE>(), Plain())
+                           : adapter(std::integral_constant<int, VISC_NONE>(), Common());
     else if (visc == VISC_CLASSIC)
-      run(ForceAdapter<VISC_CLASSIC, true>{ctx, settings, f, ctx.force, ctx.dudt, f.prho, b, w, C});
-    else if (!extras)
-      run(ForceAdapter<VISC_SIGNAL, false>{ctx, settings, f, ctx.force, ctx.dudt, f.prho, b, w, C});
+      level == FORCE_PLAIN ? adapter(std::integral_constant<int, VISC_CLASSIC>(), Plain())
+                           : adapter(std::integral_constant<int, VISC_CLASSIC>(), Common());
     else
-      run(ForceAdapter<VISC_SIGNAL, true>{ctx, settings, f, ctx.force, ctx.dudt, f.prho, b, w, C});
+      level == FORCE_PLAIN ? adapter(std::integral_constant<int, VISC_SIGNAL>(), Plain())
+                           : adapter(std::integral_constant<int, VISC_SIGNAL>(), Common());
   });
 }
 

@@ -156,15 +156,15 @@ enum class PressureForm { STANDARD, GEOMETRIC, PRESSURE_ENERGY };
 // loop-invariant settings of the force interaction
 struct ForceSettings {
   PressureForm pressure = PressureForm::STANDARD;
-  bool viscosity = true;        // artificial viscosity on
-  bool signal = false;          // signal-velocity form (else classic)
-  bool reconstruct = false;     // on velocities reconstructed to the pair midpoint
-  bool balsara = false;         // shear limiter factors in ForceParticle::shear
+  bool viscosity = true;              // artificial viscosity on
+  bool signal = false;                // signal-velocity form (else classic)
+  bool reconstruct = false;           // on velocities reconstructed to the pair midpoint
+  bool balsara = false;               // shear limiter factors in ForceParticle::shear
   bool alpha_per_particle = false;    // a switch sets alpha; beta = beta_factor x alpha
   double alpha = 1.0, beta = 2.0, beta_factor = 2.0, epsilon = 0.01;
-  int gate = 16;                // smoothness gate exponent of the reconstruction
-  bool energy = true;           // du/dt wanted (eos ideal)
-  double alpha_u = 0.0;         // artificial conductivity (0: off)
+  int gate = 16;           // smoothness gate exponent of the reconstruction
+  bool energy = true;      // du/dt wanted (eos ideal)
+  double alpha_u = 0.0;    // artificial conductivity (0: off)
   // grad-h factors: the standard pressure term's P/(Omega rho^2), C in pressure-energy
   bool gradh = false;
 };
@@ -191,7 +191,7 @@ struct ForceContribution {
   double vgw_i, vgw_j;      // sum_j m_j v_ij . grad_i W (pressure-energy: weights m_j (e_j - C_i))
   double heat_i, heat_j;    // dissipative heating (and the geometric P dV work)
   double vsig;              // signal velocity of the pair (signal viscosity)
-  double crate_i, crate_j;  // conductivity diffusion rates m_j k, m_i k
+  double crate_i, crate_j;    // conductivity diffusion rates m_j k, m_i k
 };
 
 // Momentum and energy equations of one pair (Monaghan 1992, eqs. 3.1 and 3.5; Price 2012,
@@ -209,23 +209,24 @@ struct ForceContribution {
 // heat flux, so momentum and energy are conserved pair by pair.
 //
 // The template arguments fix, where the caller knows them, what ForceSettings says at run time:
-// VISC the viscosity (VISC_RUNTIME: read s), EXTRAS = false: no Balsara limiter, reconstruction,
-// per-particle alpha or conductivity, and the standard pressure term (b = w = 1, C = 0): the
-// common case compiles without them.
+// VISC the viscosity (VISC_RUNTIME: read s); LEVEL the terms that may be on: FORCE_PLAIN none of
+// the below, FORCE_COMMON a switch's alpha and conductivity, FORCE_ALL also the Balsara limiter,
+// reconstruction and the other pressure forms (with the standard form below FORCE_ALL,
+// b = w = 1 and C = 0). The pair loop compiles the common cases without the others' tests.
 enum ViscosityVariant { VISC_NONE = 0, VISC_CLASSIC = 1, VISC_SIGNAL = 2, VISC_RUNTIME = 3 };
+enum ForceLevel { FORCE_PLAIN = 0, FORCE_COMMON = 1, FORCE_ALL = 2 };
 
-template <int VISC = VISC_RUNTIME, bool EXTRAS = true>
-[[gnu::always_inline]] inline void iact_force(const ForceSettings &s, const ForceParticle &pi,
-                                              const ForceParticle &pj, double dx, double dy,
-                                              double dz, const PairGradient &g,
-                                              ForceContribution &out)
+template <int VISC = VISC_RUNTIME, int LEVEL = FORCE_ALL>
+[[gnu::always_inline]] inline void
+iact_force(const ForceSettings &s, const ForceParticle &pi, const ForceParticle &pj, double dx,
+           double dy, double dz, const PairGradient &g, ForceContribution &out)
 {
   const bool viscosity = VISC == VISC_RUNTIME ? s.viscosity : VISC != VISC_NONE;
   const bool signal = VISC == VISC_RUNTIME ? s.signal : VISC == VISC_SIGNAL;
-  const bool reconstruct = EXTRAS && s.reconstruct;
-  const bool balsara = EXTRAS && s.balsara;
-  const bool per_particle = EXTRAS && s.alpha_per_particle;
-  const bool conductivity = EXTRAS && s.alpha_u > 0.0;
+  const bool reconstruct = LEVEL == FORCE_ALL && s.reconstruct;
+  const bool balsara = LEVEL == FORCE_ALL && s.balsara;
+  const bool per_particle = LEVEL >= FORCE_COMMON && s.alpha_per_particle;
+  const bool conductivity = LEVEL >= FORCE_COMMON && s.alpha_u > 0.0;
   const double dwi = g.dwi, dwj = g.dwj, dwbar = g.mean(), r = g.r;
   const double dvx = pi.vx - pj.vx, dvy = pi.vy - pj.vy, dvz = pi.vz - pj.vz;
   const double vdotr = dvx * dx + dvy * dy + dvz * dz;
@@ -237,10 +238,9 @@ template <int VISC = VISC_RUNTIME, bool EXTRAS = true>
     if (signal) out.vsig = signal_velocity(vdotr / r, pi.c, pj.c, s.beta);
     double vdotr_visc = vdotr;
     if (reconstruct)
-      vdotr_visc = reconstructed_vdotr(vdotr, velocity_slope(pi.vgrad, dx, dy, dz),
-                                       velocity_slope(pj.vgrad, dx, dy, dz), r,
-                                       0.5 * (pi.vgrad[6] + pj.vgrad[6]),
-                                       pi.h > pj.h ? pi.h : pj.h, s.gate);
+      vdotr_visc = reconstructed_vdotr(
+          vdotr, velocity_slope(pi.vgrad, dx, dy, dz), velocity_slope(pj.vgrad, dx, dy, dz), r,
+          0.5 * (pi.vgrad[6] + pj.vgrad[6]), pi.h > pj.h ? pi.h : pj.h, s.gate);
     if (vdotr_visc < 0.0 && (!reconstruct || vdotr < 0.0)) {
       const double a = per_particle ? 0.5 * (pi.alpha + pj.alpha) : s.alpha;
       const double shear = balsara ? 0.5 * (pi.shear + pj.shear) : 1.0;

@@ -56,9 +56,9 @@ class NeighbourLists : protected LAMMPS_NS::Pointers {
  private:
   LAMMPS_NS::NeighList *lammps_half_ = nullptr, *lammps_full_ = nullptr;
   PrunedList pruned_half_, pruned_full_;
-  PrunedList fallback_half_;                 // grad-h with prune: unpruned half list, on demand
-  std::vector<unsigned char> half_keep_;     // per full-list entry: in LAMMPS' half list
-  double *hprune_ = nullptr;                 // hl of owned and ghost atoms at the build
+  PrunedList fallback_half_;                // grad-h with prune: unpruned half list, on demand
+  std::vector<unsigned char> half_keep_;    // per full-list entry: in LAMMPS' half list
+  double *hprune_ = nullptr;                // hl of owned and ghost atoms at the build
   int nmax_ = 0;
   LAMMPS_NS::bigint fallbacks_ = 0;
   double lengths_[2] = {0.0, 0.0};

@@ -282,8 +282,8 @@ void PairOptions::check_scheme(LAMMPS *lmp, bool gradh, bool entropy, bool has_s
 void PairOptions::write_restart(FILE *fp) const
 {
   const int ival[3] = {static_cast<int>(kernel), static_cast<int>(eos.type),
-                       (has_viscosity() ? 1 : 0) + (balsara ? 2 : 0) + (signal_viscosity() ? 4 : 0) +
-                           (reconstruct ? 8 : 0)};
+                       (has_viscosity() ? 1 : 0) + (balsara ? 2 : 0) +
+                           (signal_viscosity() ? 4 : 0) + (reconstruct ? 8 : 0)};
   const double dval[7] = {eos.gamma, eos.cs, eos.K, alpha, beta, epsilon, conductivity};
   fwrite(ival, sizeof(int), 3, fp);
   fwrite(dval, sizeof(double), 7, fp);

@@ -32,13 +32,13 @@ struct PairOptions {
   // artificial viscosity: classic (Monaghan 1992) or signal velocity (Monaghan 1997)
   ViscosityForm viscosity = ViscosityForm::CLASSIC;
   double alpha = 1.0, beta = 2.0;
-  double epsilon = 0.01;          // eps in mu_ij = h v.r / (r^2 + eps h^2)
-  bool balsara = false;           // Balsara (1995) shear limiter
-  bool reconstruct = false;       // viscosity on velocities reconstructed to the pair midpoint
-  double recon_trigger = 1.0;     // noise trigger radius in particle spacings
-  int recon_gate = 16;            // smoothness gate exponent (0: off)
-  double conductivity = 0.0;      // artificial conductivity alpha_u (Price 2008; 0: off)
-  double conduction = 0.0;        // physical heat conduction kappa = k / c_v (0: off)
+  double epsilon = 0.01;              // eps in mu_ij = h v.r / (r^2 + eps h^2)
+  bool balsara = false;               // Balsara (1995) shear limiter
+  bool reconstruct = false;           // viscosity on velocities reconstructed to the pair midpoint
+  double recon_trigger = 1.0;         // noise trigger radius in particle spacings
+  int recon_gate = 16;                // smoothness gate exponent (0: off)
+  double conductivity = 0.0;          // artificial conductivity alpha_u (Price 2008; 0: off)
+  double conduction = 0.0;            // physical heat conduction kappa = k / c_v (0: off)
   bool density_continuity = false;    // rho integrated by fix sph/astro instead of summed
   bool symmetrise_kernel = false;     // (W(h_i) + W(h_j))/2 instead of W(h_ij)
   bool pressure_geometric = false;    // 2 sqrt(P_i P_j)/(rho_i rho_j)

@@ -45,7 +45,8 @@ struct Particles {
 enum class KernelUse { SUPPORT, VALUE, GRADIENT };
 
 // pair inside the support(s): r < R h_ij (mean h) or r < R max(h_i, h_j) (two h)
-template <bool TWO_H> inline bool within_support(double R2, const KernelSide &ki, double hj, double r2)
+template <bool TWO_H>
+inline bool within_support(double R2, const KernelSide &ki, double hj, double r2)
 {
   if (TWO_H) return r2 < ki.support2 || r2 < R2 * hj * hj;
   const double hij = 0.5 * (ki.h + hj);

@@ -20,9 +20,9 @@
 #define LMP_SPH_ASTRO_PASSES_H
 
 #include "lmptype.h"
-#include "sph_astro_iact.h"
 #include "sph_astro_eos.h"
 #include "sph_astro_fields.h"
+#include "sph_astro_iact.h"
 #include "sph_astro_options.h"
 #include "sph_astro_pair_loop.h"
 
@@ -41,10 +41,10 @@ struct PassContext {
   NeighView half;    // the half list of the passes
   bool newton;
   Fields *f;
-  double *rho;          // the density of this force evaluation (summed, or predicted)
-  double *rho_sum;      // where the summation writes (d_rho)
-  double *uest;         // predicted u (owned + ghost where a pass needs it)
-  double **vest;        // predicted v
+  double *rho;        // the density of this force evaluation (summed, or predicted)
+  double *rho_sum;    // where the summation writes (d_rho)
+  double *uest;       // predicted u (owned + ghost where a pass needs it)
+  double **vest;      // predicted v
   double *dudt;
   double **force;
   const double *alpha;    // per-atom alpha of a viscosity switch, or null
@@ -65,12 +65,12 @@ enum class VelocitySums { NONE, CURL, GRADIENT };
 struct GradhSettings {
   double hfact, tolerance;
   int max_iterations;
-  NeighView full;                // the (pruned) full list
-  NeighView fallback;            // LAMMPS' full list, for an h past hlist
-  const double *hlist;           // the largest h each row of full serves (null: any)
-  const double *hcap_type;       // h cap per type
-  const int *collection;         // neighbor multi collection of each atom, or null
-  const double *collection_cut;  // cutoff of each collection
+  NeighView full;                  // the (pruned) full list
+  NeighView fallback;              // LAMMPS' full list, for an h past hlist
+  const double *hlist;             // the largest h each row of full serves (null: any)
+  const double *hcap_type;         // h cap per type
+  const int *collection;           // neighbor multi collection of each atom, or null
+  const double *collection_cut;    // cutoff of each collection
   double kernel_radius;
   VelocitySums sums;
   bool pressure_energy;
@@ -117,8 +117,7 @@ struct EntropyArrays {
 void equation_of_state(const PassContext &ctx, const EOS &eos, const double *hcap_type,
                        bool density_continuity, const EntropyArrays *entropy, bool init_entropy);
 void pressure_energy_density(const PassContext &ctx, const double *energy_sum);
-void thermal_rates(const PassContext &ctx, const EOS &eos, bool omega, bool pdv_done,
-                   double *dAdt);
+void thermal_rates(const PassContext &ctx, const EOS &eos, bool omega, bool pdv_done, double *dAdt);
 
 // XSPH drift correction over a full list (mean h): dv_i = eps sum_j m_j/rho_ij (v_j - v_i) W_ij
 void xsph_pass(const PassContext &ctx, const NeighView &full, double eps, double **out);

@@ -35,7 +35,8 @@ void equation_of_state(const PassContext &ctx, const EOS &eos, const double *hca
   if (entropy) {
     const double g1 = eos.gamma - 1.0;
     for (int i = 0; i < nlocal; i++) {
-      if (init_entropy) entropy->Aest[i] = entropy->A[i] = g1 * entropy->u[i] * std::pow(rho[i], -g1);
+      if (init_entropy)
+        entropy->Aest[i] = entropy->A[i] = g1 * entropy->u[i] * std::pow(rho[i], -g1);
       uest[i] = entropy->Aest[i] * std::pow(rho[i], g1) / g1;
     }
   }
@@ -80,8 +81,7 @@ void pressure_energy_density(const PassContext &ctx, const double *energy_sum)
 // P_i/(Omega_i rho_i^2) sum_j m_j v_ij . grad W (Monaghan 1992, eq. 3.5; Price 2012, eq. 107;
 // omega: the grad-h factor). Thermal entropy: dA_i/dt = (gamma-1)/rho_i^(gamma-1) x heating
 // (Springel & Hernquist 2002). pdv_done: the P dV work is in du/dt already (pressure geometric).
-void thermal_rates(const PassContext &ctx, const EOS &eos, bool omega, bool pdv_done,
-                   double *dAdt)
+void thermal_rates(const PassContext &ctx, const EOS &eos, bool omega, bool pdv_done, double *dAdt)
 {
   const Fields &f = *ctx.f;
   const int nlocal = ctx.p.nlocal;
