@@ -1,4 +1,6 @@
 #!/usr/bin/python3
+# SPH-ASTRO - astrophysical SPH for LAMMPS. Distributed under the GNU General Public License
+# version 2 (the same licence as LAMMPS); see the LICENSE file.
 """SPH-ASTRO throughput and memory benchmark on a uniform periodic 3D box.
 
 Usage (from the repository root)::

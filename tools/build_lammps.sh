@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPH-ASTRO - astrophysical SPH for LAMMPS. Distributed under the GNU General Public License
+# version 2 (the same licence as LAMMPS); see the LICENSE file.
 # Build LAMMPS (MPI, FFTW3, KSPACE, PLUGIN, SPH, shared library) into a cache outside the repo.
 # Usage: tools/build_lammps.sh [LAMMPS_SOURCE_DIR]
 # Prints the cache directory on its last line; it holds `src` (a link to the LAMMPS source

@@ -1,4 +1,6 @@
 #!/usr/bin/python3
+# SPH-ASTRO - astrophysical SPH for LAMMPS. Distributed under the GNU General Public License
+# version 2 (the same licence as LAMMPS); see the LICENSE file.
 """Accuracy versus cost: run an SPH-ASTRO test scene at several resolutions and plot its L1
 errors against the wall time of each run.
 

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPH-ASTRO - astrophysical SPH for LAMMPS. Distributed under the GNU General Public License
+# version 2 (the same licence as LAMMPS); see the LICENSE file.
 # Obtain the LAMMPS 4 Feb 2025 source from Debian's source package.
 # Usage: tools/fetch_lammps.sh DESTDIR   -> prints the path of the unpacked source tree
 # Only the upstream tarball is used; its sha256 is checked, apt's exit code is not trusted

@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPH-ASTRO - astrophysical SPH for LAMMPS. Distributed under the GNU General Public License
+# version 2 (the same licence as LAMMPS); see the LICENSE file.
 """Self-gravity accuracy against run time: PPPM (periodic) and MSM (open) kspace settings.
 
 For each solver a random cloud of N equal-mass particles (periodic box of side 10 for

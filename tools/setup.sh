@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPH-ASTRO - astrophysical SPH for LAMMPS. Distributed under the GNU General Public License
+# version 2 (the same licence as LAMMPS); see the LICENSE file.
 # SPH-ASTRO one-command setup: installs the Debian packages, obtains and builds LAMMPS
 # 4 Feb 2025 (cached in ~/.cache/sph-astro, reused when present), builds the plugin and
 # the tests in ./build, then runs the flagship Sod shock tube and prints its errors and

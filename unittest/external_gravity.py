@@ -1,4 +1,6 @@
 #!/usr/bin/python3
+# SPH-ASTRO - astrophysical SPH for LAMMPS. Distributed under the GNU General Public License
+# version 2 (the same licence as LAMMPS); see the LICENSE file.
 """External forces on SPH-ASTRO particles with LAMMPS' own fixes (doc/Howto_sph_astro_external_gravity.rst).
 
 Isolated particles (no SPH neighbours: only the external forces act) under

@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPH-ASTRO - astrophysical SPH for LAMMPS. Distributed under the GNU General Public License
+# version 2 (the same licence as LAMMPS); see the LICENSE file.
 """MPI equivalence of self-gravity: the uniform-sphere scene on 1, 2 and 3 ranks.
 
 Runs examples/gravity_sphere/in.gravity_sphere (short: n = 8, no reference compute) with

@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPH-ASTRO - astrophysical SPH for LAMMPS. Distributed under the GNU General Public License
+# version 2 (the same licence as LAMMPS); see the LICENSE file.
 """MPI equivalence: the same scene on 1, 2, 3 and 4 ranks must give the same particles.
 
 Runs examples/sod/in.sod (short: t = 0.05) with `mpirun -np N lmp`, reads the final dumps

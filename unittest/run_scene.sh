@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPH-ASTRO - astrophysical SPH for LAMMPS. Distributed under the GNU General Public License
+# version 2 (the same licence as LAMMPS); see the LICENSE file.
 # SPH-ASTRO - astrophysical SPH for LAMMPS. This software is distributed under the GNU General
 # Public License version 2 (the same licence as LAMMPS); see the LICENSE file.
 #

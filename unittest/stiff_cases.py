@@ -1,4 +1,6 @@
 #!/usr/bin/python3
+# SPH-ASTRO - astrophysical SPH for LAMMPS. Distributed under the GNU General Public License
+# version 2 (the same licence as LAMMPS); see the LICENSE file.
 """Stiff and extreme cases: tiny LAMMPS runs that must end cleanly or stop with a clear error.
 
 Usage: python3 unittest/stiff_cases.py WORKDIR [--only NAME[,NAME...]]

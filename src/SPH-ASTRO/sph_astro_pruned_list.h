@@ -1,6 +1,11 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   SPH-ASTRO: neighbour lists pruned to the kernel supports
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
 ------------------------------------------------------------------------- */
+
+// Neighbour lists pruned to the kernel supports
 
 // LAMMPS' lists of pair sph/astro reach kernel_radius x the h cap of a type (margin x its
 // largest h) plus the skin, for every particle of the type: with margin 1.5 they hold about

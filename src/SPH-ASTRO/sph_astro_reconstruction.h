@@ -1,6 +1,11 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   SPH-ASTRO: slope-limited linear reconstruction of the velocity for the artificial viscosity
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
 ------------------------------------------------------------------------- */
+
+// Slope-limited linear reconstruction of the velocity for the artificial viscosity
 
 // Plain functions (no LAMMPS), shared by the pair passes and the unit tests.
 //
