@@ -15,6 +15,8 @@
 
 #include "compute_sph_astro_atom.h"
 
+#include "sph_astro_state.h"
+
 #include "atom.h"
 #include "error.h"
 #include "force.h"
@@ -30,6 +32,7 @@ using namespace LAMMPS_NS;
 ComputeSPHAstroAtom::ComputeSPHAstroAtom(LAMMPS *lmp, int narg, char **arg) :
     Compute(lmp, narg, arg)
 {
+  state_ = new SPHAstro::StateIndex();
   nmax_ = 0;
   vector_ = nullptr;
   array_ = nullptr;
@@ -56,6 +59,7 @@ ComputeSPHAstroAtom::ComputeSPHAstroAtom(LAMMPS *lmp, int narg, char **arg) :
 
 ComputeSPHAstroAtom::~ComputeSPHAstroAtom()
 {
+  delete state_;
   memory->destroy(vector_);
   memory->destroy(array_);
 }
@@ -64,7 +68,7 @@ void ComputeSPHAstroAtom::init()
 {
   pair_ = dynamic_cast<PairSPHAstro *>(force->pair_match("^sph/astro$", 0, 0));
   if (!pair_) error->all(FLERR, "compute sph/astro/atom requires pair_style sph/astro");
-  if (!SPHAstro::find_state(lmp, state_))
+  if (!SPHAstro::find_state(lmp, *state_))
     error->all(FLERR, "compute sph/astro/atom requires fix sph/astro (the per-particle state)");
 }
 
@@ -99,14 +103,14 @@ void ComputeSPHAstroAtom::compute_peratom()
   // with pair sph/astro density continuity the counts take a neighbour pass: only if asked
   bool has_nneigh = false;
   for (int field : fields_) has_nneigh = has_nneigh || field == NNEIGH;
-  const double *columns[10] = {atom->dvector[state_.rho],
-                               atom->dvector[state_.h],
+  const double *columns[10] = {atom->dvector[state_->rho],
+                               atom->dvector[state_->h],
                                static_cast<double *>(pair_->extract_peratom("pressure", ncol)),
                                static_cast<double *>(pair_->extract_peratom("soundspeed", ncol)),
-                               atom->dvector[state_.u],
+                               atom->dvector[state_->u],
                                has_nneigh ? pair_->neighbour_counts() : nullptr,
                                static_cast<double *>(pair_->extract_peratom("divv", ncol)),
-                               atom->dvector[state_.dudt],
+                               atom->dvector[state_->dudt],
                                gradh_omega ? omega : nullptr,
                                alpha};
   const int *mask = atom->mask;

@@ -19,9 +19,12 @@ ComputeStyle(sph/astro/atom,ComputeSPHAstroAtom);
 #define LMP_COMPUTE_SPH_ASTRO_ATOM_H
 
 #include "compute.h"
-#include "sph_astro_state.h"
 
 #include <vector>
+
+namespace SPHAstro {
+struct StateIndex;
+}    // namespace SPHAstro
 
 namespace LAMMPS_NS {
 
@@ -39,7 +42,7 @@ class ComputeSPHAstroAtom : public Compute {
   int nmax_;
   double *vector_;
   double **array_;
-  SPHAstro::StateIndex state_;
+  SPHAstro::StateIndex *state_;
   class PairSPHAstro *pair_;
 };
 

@@ -22,6 +22,8 @@
 
 #include "compute_sph_astro_global.h"
 
+#include "sph_astro_state.h"
+
 #include "atom.h"
 #include "domain.h"
 #include "error.h"
@@ -41,6 +43,7 @@ using namespace LAMMPS_NS;
 ComputeSPHAstroGlobal::ComputeSPHAstroGlobal(LAMMPS *lmp, int narg, char **arg) :
     Compute(lmp, narg, arg)
 {
+  state_ = new SPHAstro::StateIndex();
   pair_ = nullptr;
   fix_ = nullptr;
   hfix_ = nullptr;
@@ -61,6 +64,7 @@ ComputeSPHAstroGlobal::ComputeSPHAstroGlobal(LAMMPS *lmp, int narg, char **arg) 
 
 ComputeSPHAstroGlobal::~ComputeSPHAstroGlobal()
 {
+  delete state_;
   delete[] vector;
   delete[] extlist;
 }
@@ -69,7 +73,7 @@ void ComputeSPHAstroGlobal::init()
 {
   pair_ = dynamic_cast<PairSPHAstro *>(force->pair_match("^sph/astro$", 0, 0));
   if (!pair_) error->all(FLERR, "compute sph/astro/global requires pair_style sph/astro");
-  if (!SPHAstro::find_state(lmp, state_))
+  if (!SPHAstro::find_state(lmp, *state_))
     error->all(FLERR, "compute sph/astro/global requires fix sph/astro (the per-particle state)");
   auto fixes = modify->get_fix_by_style("^sph/astro$");
   fix_ = fixes.empty() ? nullptr : dynamic_cast<FixSPHAstro *>(fixes.front());
@@ -91,14 +95,14 @@ void ComputeSPHAstroGlobal::compute_vector()
   const imageint *image = atom->image;
   const double *rmass = atom->rmass;
   const double *mass = atom->mass;
-  const double *rho = atom->dvector[state_.rho];
-  const double *u = atom->dvector[state_.u];
+  const double *rho = atom->dvector[state_->rho];
+  const double *u = atom->dvector[state_->u];
   const SPHAstro::EOS &eos = pair_->options().eos;
   const int nlocal = atom->nlocal;
 
   double local[NVALUES] = {0.0};
   double unwrap[3];
-  const double *h = atom->dvector[state_.h];
+  const double *h = atom->dvector[state_->h];
   double hrange[2] = {INFINITY, -INFINITY};    // -hmin, hmax for one MPI_MAX
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;

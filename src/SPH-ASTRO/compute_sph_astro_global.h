@@ -19,7 +19,10 @@ ComputeStyle(sph/astro/global,ComputeSPHAstroGlobal);
 #define LMP_COMPUTE_SPH_ASTRO_GLOBAL_H
 
 #include "compute.h"
-#include "sph_astro_state.h"
+
+namespace SPHAstro {
+struct StateIndex;
+}    // namespace SPHAstro
 
 namespace LAMMPS_NS {
 
@@ -53,7 +56,7 @@ class ComputeSPHAstroGlobal : public Compute {
   };
 
  private:
-  SPHAstro::StateIndex state_;
+  SPHAstro::StateIndex *state_;
   class PairSPHAstro *pair_;
   class FixSPHAstro *fix_;
   class Fix *hfix_;    // fix sph/astro/h, for the h-iteration statistics

@@ -48,6 +48,10 @@ using MathConst::MY_PIS;
 ComputeSPHAstroGravityDirect::ComputeSPHAstroGravityDirect(LAMMPS *lmp, int narg, char **arg) :
     Compute(lmp, narg, arg)
 {
+  pair_ = nullptr;
+  nmax_ = 0;
+  result_ = nullptr;
+  energy_ = 0.0;
   if (narg != 3)
     error->all(FLERR, "compute sph/astro/gravity/direct takes no arguments (got {})", narg - 3);
   peratom_flag = 1;

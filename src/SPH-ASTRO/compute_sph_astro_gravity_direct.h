@@ -34,10 +34,10 @@ class ComputeSPHAstroGravityDirect : public Compute {
   double memory_usage() override;
 
  private:
-  class PairSPHAstroGravity *pair_ = nullptr;
-  int nmax_ = 0;
-  double **result_ = nullptr;    // fx fy fz phi of the owned atoms
-  double energy_ = 0.0;          // 1/2 sum_i m_i phi_i over all atoms
+  class PairSPHAstroGravity *pair_;
+  int nmax_;
+  double **result_;    // fx fy fz phi of the owned atoms
+  double energy_;      // 1/2 sum_i m_i phi_i over all atoms
 
   // all atoms of all ranks
   std::vector<double> x_, m_, h_;

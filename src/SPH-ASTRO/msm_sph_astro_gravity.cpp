@@ -42,6 +42,7 @@ static constexpr const char *STYLE = "kspace_style msm/sph/astro/gravity";
 
 MSMSPHAstroGravity::MSMSPHAstroGravity(LAMMPS *lmp) : MSM(lmp)
 {
+  G_ = 0.0;
   warn_nonneutral = 2;    // allow (and do not warn about) a non-zero total mass
   ensure_mass_charge(lmp, STYLE);
 }

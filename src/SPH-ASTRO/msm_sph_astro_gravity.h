@@ -30,7 +30,7 @@ class MSMSPHAstroGravity : public MSM {
   void compute(int, int) override;
 
  protected:
-  double G_ = 0.0;
+  double G_;
 
   void set_grid_local_corners();
 };

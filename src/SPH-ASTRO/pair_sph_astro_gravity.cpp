@@ -43,6 +43,8 @@
 
 #include "pair_sph_astro_gravity.h"
 
+#include "sph_astro_state.h"
+
 #include "pair_sph_astro.h"
 #include "sph_astro_gravity_kernel.h"
 #include "sph_astro_gravity_kspace.h"
@@ -73,6 +75,24 @@ using MathConst::MY_PIS;
 
 PairSPHAstroGravity::PairSPHAstroGravity(LAMMPS *lmp) : Pair(lmp)
 {
+  cut_global_ = 0.0;
+  G_ = 0.0;
+  G_given_ = false;
+  kernel_ = SPHAstro::KernelType::CUBIC;
+  kernel_given_ = false;
+  hfixed_ = 0.0;
+  have_state_ = false;
+  split_ = Split::NONE;
+  g_ewald_ = 0.0;
+  zeta_on_ = true;
+  zeta_active_ = false;
+  sph_ = nullptr;
+  zeta_ = nullptr;
+  nmax_ = 0;
+  comm_stage_ = Stage::H;
+  offset_ = 0;
+  ntotal_ = 0;
+  state_ = new SPHAstro::StateIndex();
   single_enable = 0;
   restartinfo = 1;
   one_coeff = 1;
@@ -86,6 +106,7 @@ PairSPHAstroGravity::PairSPHAstroGravity(LAMMPS *lmp) : Pair(lmp)
 PairSPHAstroGravity::~PairSPHAstroGravity()
 {
   if (copymode) return;
+  delete state_;
   memory->destroy(zeta_);
   if (allocated) {
     memory->destroy(setflag);
@@ -182,7 +203,7 @@ void PairSPHAstroGravity::coeff(int narg, char **arg)
 
 double *PairSPHAstroGravity::state_h() const
 {
-  return have_state_ ? atom->dvector[state_.h] : nullptr;
+  return have_state_ ? atom->dvector[state_->h] : nullptr;
 }
 
 double PairSPHAstroGravity::softening_length(int i) const
@@ -217,7 +238,7 @@ void PairSPHAstroGravity::init_style()
     error->all(FLERR,
                "pair_style sph/astro/gravity: no softened potential for kernel gaussian; "
                "allowed: m4, m6, wendland/c2, wendland/c4");
-  have_state_ = find_state(lmp, state_);
+  have_state_ = find_state(lmp, *state_);
 
   // every atom needs a mass and a softening length
   const double R = SPHAstro::kernel_radius(kernel_);
@@ -404,7 +425,7 @@ void PairSPHAstroGravity::compute_zeta()
   const double *rmass = atom->rmass;
   const double *mass = atom->mass;
   const double *h = state_h();
-  const double *rho = atom->dvector[state_.rho];
+  const double *rho = atom->dvector[state_->rho];
   int ncol;
   const double *omega = static_cast<const double *>(sph_->extract_peratom("omega_valid", ncol));
   const int nlocal = atom->nlocal;

@@ -19,10 +19,13 @@ PairStyle(sph/astro/gravity,PairSPHAstroGravity);
 #define LMP_PAIR_SPH_ASTRO_GRAVITY_H
 
 #include "pair.h"
-#include "sph_astro_kernel.h"
-#include "sph_astro_state.h"
 
 #include <vector>
+
+namespace SPHAstro {
+struct StateIndex;
+enum class KernelType;
+}    // namespace SPHAstro
 
 namespace LAMMPS_NS {
 
@@ -65,27 +68,27 @@ class PairSPHAstroGravity : public Pair {
   enum class Split { NONE = 0, EWALD = 1, MSM = 2 };
 
  protected:
-  double cut_global_ = 0.0;
-  double G_ = 0.0;
-  bool G_given_ = false;
-  SPHAstro::KernelType kernel_ = SPHAstro::KernelType::CUBIC;
-  bool kernel_given_ = false;
-  double hfixed_ = 0.0;    // softening length of atoms without SPH state (0: none)
+  double cut_global_;
+  double G_;
+  bool G_given_;
+  SPHAstro::KernelType kernel_;
+  bool kernel_given_;
+  double hfixed_;    // softening length of atoms without SPH state (0: none)
 
-  bool have_state_ = false;
-  SPHAstro::StateIndex state_;
-  Split split_ = Split::NONE;
-  double g_ewald_ = 0.0;
+  bool have_state_;
+  SPHAstro::StateIndex *state_;
+  Split split_;
+  double g_ewald_;
 
   // adaptive-softening ("zeta") terms of Price & Monaghan 2007 with variable h (grad-h mode
   // of pair sph/astro): keyword zeta yes|no; zeta_ holds zeta_i (owned + ghost)
-  bool zeta_on_ = true;
-  bool zeta_active_ = false;
-  class PairSPHAstro *sph_ = nullptr;
-  double *zeta_ = nullptr;
-  int nmax_ = 0;
+  bool zeta_on_;
+  bool zeta_active_;
+  class PairSPHAstro *sph_;
+  double *zeta_;
+  int nmax_;
   enum class Stage { H, ZETA };
-  Stage comm_stage_ = Stage::H;
+  Stage comm_stage_;
 
   void allocate();
   void resolve_gravity_constant();
@@ -96,7 +99,7 @@ class PairSPHAstroGravity : public Pair {
   // atoms; this rank's atoms start at offset_
   std::vector<double> all_, zo_all_;
   std::vector<int> gather_counts_, gather_displs_;
-  int offset_ = 0, ntotal_ = 0;
+  int offset_, ntotal_;
   void gather_all();
   template <bool CUBIC, int SPLIT, bool ZETA> void eval(int eflag, int vflag);
 };

@@ -31,6 +31,7 @@ static constexpr const char *STYLE = "kspace_style pppm/sph/astro/gravity";
 
 PPPMSPHAstroGravity::PPPMSPHAstroGravity(LAMMPS *lmp) : PPPM(lmp)
 {
+  G_ = 0.0;
   warn_nonneutral = 2;    // masses never sum to zero: no warning
   ensure_mass_charge(lmp, STYLE);
 }

@@ -29,7 +29,7 @@ class PPPMSPHAstroGravity : public PPPM {
   void compute(int, int) override;
 
  protected:
-  double G_ = 0.0;
+  double G_;
 };
 
 }    // namespace LAMMPS_NS
