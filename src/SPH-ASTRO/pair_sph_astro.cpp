@@ -19,10 +19,12 @@
 #include "pair_sph_astro.h"
 
 #include "sph_astro_comm_table.h"
+#include "sph_astro_force_evaluation.h"
 #include "sph_astro_neighbour_lists.h"
 #include "sph_astro_options.h"
 #include "sph_astro_pair_coeff.h"
 #include "sph_astro_passes.h"
+#include "sph_astro_scheme.h"
 #include "sph_astro_state.h"
 #include "sph_astro_timestep.h"
 
@@ -49,11 +51,10 @@ using namespace SPHAstro;
 PairSPHAstro::PairSPHAstro(LAMMPS *lmp) :
     Pair(lmp), opt_(new PairOptions()), fields_(new Fields()), lists_(new NeighbourLists(lmp)),
     hstats_(new GradhStatistics()), state_(new StateIndex()), entropy_index_(new EntropyIndex()),
-    continuity_index_(new ContinuityIndex()), hmode_(HMode::FIXED), hfact_(1.2), h_tolerance_(1e-4),
-    h_margin_(1.0), h_max_iterations_(30), entropy_(false), switch_(false), curl_on_(false),
-    entropy_init_pending_(false), density_init_pending_(false), alpha_atom_(nullptr),
-    hcap_type_(nullptr), kernel_radius_(2.0), h_failures_(0), prune_atom_fallbacks_(0),
-    counts_step_(-1), computed_step_(-1), computed_nlocal_(-1), comm_table_(new CommTable())
+    continuity_index_(new ContinuityIndex()), scheme_(new Scheme()), entropy_init_pending_(false),
+    density_init_pending_(false), alpha_atom_(nullptr), hcap_type_(nullptr), kernel_radius_(2.0),
+    h_failures_(0), prune_atom_fallbacks_(0), counts_step_(-1), computed_step_(-1),
+    computed_nlocal_(-1), comm_table_(new CommTable())
 {
   single_enable = 0;
   restartinfo = 1;
@@ -82,6 +83,7 @@ PairSPHAstro::~PairSPHAstro()
   delete state_;
   delete entropy_index_;
   delete continuity_index_;
+  delete scheme_;
   delete comm_table_;
 }
 
@@ -115,15 +117,6 @@ void PairSPHAstro::allocate()
   memory->create(hcap_type_, n, "pair:hcap_type");
 }
 
-// an integer or double setting a fix offers through Fix::extract()
-static double fix_setting(Fix *fix, const char *name)
-{
-  int dim = 0;
-  void *p = fix->extract(name, dim);
-  if (!p) return 0.0;
-  return dim == 1 ? *static_cast<double *>(p) : *static_cast<int *>(p);
-}
-
 void PairSPHAstro::init_style()
 {
   const PairOptions &o = *opt_;
@@ -132,34 +125,12 @@ void PairSPHAstro::init_style()
                "pair_style sph/astro needs the SPH per-particle state: define fix sph/astro "
                "(it creates fix {})",
                STATE_FIX_ID);
-  auto integrators = modify->get_fix_by_style("^sph/astro$");
-  if (integrators.empty())
-    error->all(FLERR,
-               "pair_style sph/astro requires fix sph/astro: it integrates u and predicts the "
-               "velocities the viscosity uses");
-  entropy_ = fix_setting(integrators.front(), "entropy") != 0.0;
-  if (entropy_ && !find_entropy_state(lmp, *entropy_index_))
+  *scheme_ = read_scheme(lmp, o);
+  h_failures_ = 0;
+  if (scheme_->entropy && !find_entropy_state(lmp, *entropy_index_))
     error->all(FLERR, "pair_style sph/astro: the entropy state fix {} is missing", ENTROPY_FIX_ID);
   if (domain->dimension != 2 && domain->dimension != 3)
     error->all(FLERR, "pair_style sph/astro: dimension {} not supported", domain->dimension);
-
-  auto hfixes = modify->get_fix_by_style("^sph/astro/h$");
-  hmode_ = HMode::FIXED;
-  h_margin_ = 1.0;
-  if (!hfixes.empty()) {
-    Fix *hfix = hfixes.front();
-    hmode_ = fix_setting(hfix, "iterate") != 0.0 ? HMode::GRADH : HMode::DHDT;
-    hfact_ = fix_setting(hfix, "hfact");
-    h_tolerance_ = fix_setting(hfix, "tolerance");
-    h_max_iterations_ = static_cast<int>(fix_setting(hfix, "maxiter"));
-    h_margin_ = fix_setting(hfix, "margin");
-  }
-  h_failures_ = 0;
-
-  auto switches = modify->get_fix_by_style("^sph/astro/switch$");
-  switch_ = !switches.empty();
-  curl_on_ = o.balsara || (switch_ && fix_setting(switches.front(), "needs_curl") != 0.0);
-  o.check_scheme(lmp, gradh(), entropy_, switch_);
   if (o.density_continuity && !find_continuity_state(lmp, *continuity_index_))
     error->all(FLERR,
                "pair_style sph/astro density continuity: the per-atom state fix {} is missing",
@@ -193,7 +164,7 @@ void PairSPHAstro::init_style()
     error->all(FLERR, "pair_style sph/astro: no particle has h > 0 (set group all d_h VALUE)");
   // a type without particles yet gets the largest h of all
   for (int t = 1; t <= ntypes; t++)
-    hcap_type_[t] = h_margin_ * (hcap_type_[t] > 0.0 ? hcap_type_[t] : hmax);
+    hcap_type_[t] = scheme_->margin * (hcap_type_[t] > 0.0 ? hcap_type_[t] : hmax);
 
   const double support = o.kernel_radius() * hmax;
   if (neighbor->skin > support && comm->me == 0)
@@ -245,7 +216,7 @@ void PairSPHAstro::grow_fields()
 {
   const PairOptions &o = *opt_;
   fields_->grow(memory, atom->nmax,
-                {curl_on_, o.balsara, o.signal_viscosity(), o.reconstruction(),
+                {scheme_->curl, o.balsara, o.signal_viscosity(), o.reconstruction(),
                  o.artificial_conductivity(), o.pressure_geometric || o.pressure_energy,
                  o.pressure_energy, o.pressure_energy && gradh(), o.physical_conduction()});
 }
@@ -273,6 +244,49 @@ PassContext PairSPHAstro::context()
   return ctx;
 }
 
+bool PairSPHAstro::gradh() const
+{
+  return scheme_->gradh();
+}
+
+// the h-rho iteration's settings: fix sph/astro/h's, the lists and the caps of this run
+GradhSettings PairSPHAstro::gradh_settings() const
+{
+  const PairOptions &o = *opt_;
+  GradhSettings s;
+  s.hfact = scheme_->hfact;
+  s.tolerance = scheme_->tolerance;
+  s.max_iterations = scheme_->max_iterations;
+  s.full = lists_->lammps_full() ? lists_->full() : NeighView{0, nullptr, nullptr, nullptr};
+  s.fallback = lists_->lammps_full() ? view_of(lists_->lammps_full()) : s.full;
+  s.hlist = lists_->full_limits();
+  s.hcap_type = hcap_type_;
+  const bool collections =
+      neighbor->style == Neighbor::MULTI && neighbor->finite_cut_flag && neighbor->collection;
+  s.collection = collections ? neighbor->collection : nullptr;
+  s.collection_cut = neighbor->collection2cut;
+  s.kernel_radius = o.kernel_radius();
+  s.sums = o.reconstruction() ? VelocitySums::GRADIENT
+      : scheme_->curl         ? VelocitySums::CURL
+                              : VelocitySums::NONE;
+  s.pressure_energy = o.pressure_energy;
+  s.gamma = o.eos.gamma;
+  return s;
+}
+
+namespace {
+// the stages' communication: LAMMPS' forward and reverse communication of the pair
+class PairExchange : public SPHAstro::Exchange {
+ public:
+  explicit PairExchange(PairSPHAstro *pair) : pair_(pair) {}
+  void forward(std::initializer_list<CommField> fields) override { pair_->forward(fields); }
+  void reverse(std::initializer_list<CommField> fields) override { pair_->reverse(fields); }
+
+ private:
+  PairSPHAstro *pair_;
+};
+}    // namespace
+
 /* ----------------------------------------------------------------------
    one force evaluation: density (summation, h iteration, or none with density continuity
    after its first summation), EOS, velocity gradients, forward communication, forces,
@@ -287,195 +301,42 @@ void PairSPHAstro::compute(int eflag, int vflag)
   if (!opt_->prune)
     lists_->clear();
   else if (neighbor->ago == 0)    // LAMMPS has built its lists in this step (or the setup)
-    lists_->prune(h, hcap_type_, hmode_ == HMode::FIXED ? 1.0 : PRUNE_GROWTH,
+    lists_->prune(h, hcap_type_, scheme_->hmode == Scheme::HMode::FIXED ? 1.0 : PRUNE_GROWTH,
                   opt_->kernel_radius());
   alpha_atom_ = nullptr;
-  if (switch_) {
+  if (scheme_->has_switch) {
     int flag, cols;
     const int index = atom->find_custom("alpha", flag, cols);
     if (index >= 0) alpha_atom_ = atom->dvector[index];
   }
 
   PassContext ctx = context();
-  if (!gradh()) ctx.half = lists_->half(h);
-  density_stage(ctx);
-  if (gradh()) ctx.half = lists_->half(h);    // h is that of the iteration now
-  equation_of_state(ctx);
-  gradient_stage(ctx);
-  // pressure-energy with grad-h terms: div v and curl v above are those of the mass density
-  // and Omega; now rho_i = P_i / ((gamma-1) u_i) and the EOS again (P = (gamma-1) rho u)
-  if (gradh() && opt_->pressure_energy) {
-    pressure_energy_density(ctx, fields_->energy_sum);
-    equation_of_state(ctx);
+  EvaluationArrays arrays{atom->dvector[state_->h], nullptr, nullptr, {}};
+  if (opt_->density_continuity) {
+    arrays.rhoest = atom->dvector[continuity_index_->rhoest];
+    arrays.drhodt = atom->dvector[continuity_index_->drhodt];
   }
-  forward_state();
-  force_stage(ctx);
-  if (opt_->physical_conduction()) conduction_stage(ctx);
+  if (scheme_->entropy)
+    arrays.entropy = {atom->dvector[entropy_index_->A], atom->dvector[entropy_index_->Aest],
+                      atom->dvector[entropy_index_->dAdt], atom->dvector[state_->u]};
+  PairExchange exchange(this);
+  ForceEvaluation evaluation(ctx, *opt_, *scheme_, arrays, exchange);
+  const EvaluationResult result =
+      evaluation.run(*lists_, gradh_settings(), *hstats_, hcap_type_,
+                     opt_->density_continuity && density_init_pending_, entropy_init_pending_);
+  entropy_init_pending_ = false;
+  if (opt_->density_continuity) density_init_pending_ = false;
+  counts_step_ = result.counted ? update->ntimestep : -1;
+  h_failures_ += result.h_failures;
+  prune_atom_fallbacks_ += result.list_fallbacks;
   if (vflag_fdotr) virial_fdotr_compute();
   computed_step_ = update->ntimestep;
   computed_nlocal_ = atom->nlocal;
 }
 
-void PairSPHAstro::density_stage(PassContext &ctx)
-{
-  const PairOptions &o = *opt_;
-  Fields &f = *fields_;
-  double *h = atom->dvector[state_->h];
-  if (hmode_ == HMode::DHDT) forward({{h, nullptr, 1, false}});       // the ghosts' h of this step
-  counts_step_ = update->ntimestep;                                   // a density pass counts
-  if (o.pressure_energy) forward({{ctx.uest, nullptr, 1, false}});    // the ghosts' u
-  if (gradh()) {
-    GradhSettings s;
-    s.hfact = hfact_;
-    s.tolerance = h_tolerance_;
-    s.max_iterations = h_max_iterations_;
-    s.full = lists_->full();
-    s.fallback = view_of(lists_->lammps_full());
-    s.hlist = lists_->full_limits();
-    s.hcap_type = hcap_type_;
-    const bool collections =
-        neighbor->style == Neighbor::MULTI && neighbor->finite_cut_flag && neighbor->collection;
-    s.collection = collections ? neighbor->collection : nullptr;
-    s.collection_cut = neighbor->collection2cut;
-    s.kernel_radius = o.kernel_radius();
-    s.sums = o.reconstruction() ? VelocitySums::GRADIENT
-        : curl_on_              ? VelocitySums::CURL
-                                : VelocitySums::NONE;
-    s.pressure_energy = o.pressure_energy;
-    s.gamma = o.eos.gamma;
-    if (s.sums != VelocitySums::NONE) forward({{nullptr, ctx.vest, 3, false}});
-    density_gradh(ctx, s, *hstats_);
-    prune_atom_fallbacks_ += hstats_->list_fallbacks;
-    h_failures_ += hstats_->failures;
-    return;
-  }
-  if (o.density_continuity && !density_init_pending_) {
-    counts_step_ = -1;    // counted only if asked for (neighbour_counts)
-    return;
-  }
-  density_summation(ctx, o.symmetrise_kernel, o.pressure_energy);
-  if (ctx.newton) reverse({{ctx.rho_sum, nullptr, 1, false}, {f.nneigh, nullptr, 1, false}});
-  if (o.pressure_energy) pressure_energy_density(ctx, ctx.rho_sum);
-  if (o.density_continuity) {    // the integrated density starts from one summation
-    double *rhoest = atom->dvector[continuity_index_->rhoest];
-    for (int i = 0; i < atom->nlocal; i++) rhoest[i] = ctx.rho_sum[i];
-    density_init_pending_ = false;
-  }
-}
-
-void PairSPHAstro::gradient_stage(PassContext &ctx)
-{
-  const PairOptions &o = *opt_;
-  Fields &f = *fields_;
-  if (o.reconstruction()) {    // grad v (and from it div v and curl v)
-    if (!gradh()) {
-      forward({{nullptr, ctx.vest, 3, false}});
-      velocity_sums(ctx, o.symmetrise_kernel, VelocitySums::GRADIENT);
-      if (ctx.newton) reverse({{nullptr, f.vgsum, VGRAD_SUMS, false}});
-    }
-    finish_velocity_gradient(ctx, o.recon_trigger, curl_on_);
-    if (curl_on_) finish_curl(ctx, gradh(), o.balsara);
-  } else if (curl_on_) {
-    if (!gradh()) {    // (with grad-h terms the sums come from the h iteration)
-      forward({{nullptr, ctx.vest, 3, false}});
-      velocity_sums(ctx, o.symmetrise_kernel, VelocitySums::CURL);
-      if (ctx.newton) reverse({{nullptr, f.dcurl, 4, false}});
-    }
-    finish_curl(ctx, gradh(), o.balsara);
-  }
-}
-
-void PairSPHAstro::force_stage(PassContext &ctx)
-{
-  const PairOptions &o = *opt_;
-  Fields &f = *fields_;
-  const int nlocal = atom->nlocal;
-  const int nall = nlocal + atom->nghost;
-  if (o.pressure_geometric)    // g = sqrt(P)/rho of owned and ghost atoms
-    for (int i = 0; i < nall; i++)
-      f.pressure_factor[i] = pressure_geometric_factor(f.pressure[i], ctx.rho[i]);
-  else if (o.pressure_energy)    // (gamma-1) u = P/rho of owned and ghost atoms
-    for (int i = 0; i < nall; i++) f.pressure_factor[i] = f.pressure[i] / ctx.rho[i];
-
-  const ForceSettings s = force_settings(o, gradh(), alpha_atom_ != nullptr);
-  force_pass(ctx, s, gradh() || o.symmetrise_kernel, o.symmetrise_kernel);
-  if (ctx.newton) {
-    double *dudt = s.energy ? ctx.dudt : nullptr;
-    reverse({{dudt, nullptr, 1, false},
-             {f.vdotgradw, nullptr, 1, false},
-             {s.signal ? f.vsigmax : nullptr, nullptr, 1, true},
-             {s.alpha_u > 0.0 ? f.condrate : nullptr, nullptr, 1, false}});
-  }
-  finish_force(ctx, s);
-  if (s.energy)
-    thermal_rates(ctx, o.eos, gradh() && !o.pressure_energy, o.pressure_geometric,
-                  entropy_ ? atom->dvector[entropy_index_->dAdt] : nullptr);
-  // drho_i/dt = sum_j m_j v_ij . grad_i W_ij (Monaghan 1992, eq. 2.12), integrated by fix
-  // sph/astro
-  if (o.density_continuity) {
-    double *drhodt = atom->dvector[continuity_index_->drhodt];
-    for (int i = 0; i < nlocal; i++) drhodt[i] = f.vdotgradw[i];
-  }
-}
-
-// physical heat conduction: a pass of its own, only when kappa > 0
-void PairSPHAstro::conduction_stage(PassContext &ctx)
-{
-  Fields &f = *fields_;
-  conduction_pass(ctx, opt_->conduction, gradh() || opt_->symmetrise_kernel);
-  if (ctx.newton) reverse({{f.conduct, nullptr, 1, false}});
-  const int nlocal = atom->nlocal;
-  for (int i = 0; i < nlocal; i++) ctx.dudt[i] += f.conduct[i];
-  if (entropy_) {
-    double *dAdt = atom->dvector[entropy_index_->dAdt];
-    const double g1 = opt_->eos.gamma - 1.0;
-    for (int i = 0; i < nlocal; i++) dAdt[i] += g1 * std::pow(ctx.rho[i], -g1) * f.conduct[i];
-  }
-}
-
-// the EOS of this evaluation; A from u when fix sph/astro scheduled it
-void PairSPHAstro::equation_of_state(const PassContext &ctx)
-{
-  EntropyArrays entropy{nullptr, nullptr, nullptr, nullptr};
-  if (entropy_)
-    entropy = {atom->dvector[entropy_index_->A], atom->dvector[entropy_index_->Aest],
-               atom->dvector[entropy_index_->dAdt], atom->dvector[state_->u]};
-  SPHAstro::equation_of_state(ctx, opt_->eos, hcap_type_, opt_->density_continuity,
-                              entropy_ ? &entropy : nullptr, entropy_init_pending_);
-  if (entropy_) entropy_init_pending_ = false;
-}
-
 /* ----------------------------------------------------------------------
    communication: each stage names its arrays; pack and unpack walk the table
 ------------------------------------------------------------------------- */
-
-// the ghosts' copy of what the force pass reads
-void PairSPHAstro::forward_state()
-{
-  const PairOptions &o = *opt_;
-  Fields &f = *fields_;
-  const bool pe_gradh = gradh() && o.pressure_energy;
-  forward({{eval_density(), nullptr, 1, false},
-           {f.pressure, nullptr, 1, false},
-           {f.soundspeed, nullptr, 1, false},
-           {nullptr, atom->darray[state_->vest], 3, false},
-           {gradh() ? atom->dvector[state_->h] : nullptr, nullptr, 1, false},
-           {gradh() ? f.omega : nullptr, nullptr, 1, false},
-           {pe_gradh ? f.pe_gradh : nullptr, nullptr, 1, false},
-           {alpha_atom_, nullptr, 1, false},
-           {ghosts_need_u() ? atom->dvector[state_->uest] : nullptr, nullptr, 1, false},
-           {o.balsara ? f.balsara : nullptr, nullptr, 1, false},
-           {nullptr, o.reconstruction() ? f.vgrad : nullptr, VGRAD_DATA, false}});
-}
-
-// the ghosts' u_est travels with the state when a term of the force or conduction pass reads
-// the partner's u (with formulation pressure-energy it has travelled already, before the
-// pressure pass, and has not changed since)
-bool PairSPHAstro::ghosts_need_u() const
-{
-  const PairOptions &o = *opt_;
-  return o.eos.uses_energy() && (o.conductivity > 0.0 || o.conduction > 0.0) && !o.pressure_energy;
-}
 
 void PairSPHAstro::forward(std::initializer_list<CommField> fields)
 {
@@ -660,7 +521,7 @@ void *PairSPHAstro::extract_peratom(const char *name, int &ncol)
   if (strcmp(name, "nneigh") == 0)
     return counts_step_ == computed_step_ ? (void *) f.nneigh : nullptr;
   if (strcmp(name, "omega") == 0) return (void *) f.omega;
-  if (strcmp(name, "curlv") == 0) return (void *) (curl_on_ ? f.curlv : nullptr);
+  if (strcmp(name, "curlv") == 0) return (void *) (scheme_->curl ? f.curlv : nullptr);
   if (strcmp(name, "vsigmax") == 0) return (void *) (o.signal_viscosity() ? f.vsigmax : nullptr);
   if (strcmp(name, "balsara") == 0) return (void *) (o.balsara ? f.balsara : nullptr);
   if (strcmp(name, "condrate") == 0)

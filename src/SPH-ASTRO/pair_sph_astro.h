@@ -28,6 +28,8 @@ struct StateIndex;
 struct EntropyIndex;
 struct ContinuityIndex;
 class NeighbourLists;
+struct Scheme;
+struct GradhSettings;
 class CommTable;
 struct CommField;
 enum class KernelType;
@@ -120,6 +122,11 @@ class PairSPHAstro : public Pair {
   bigint prune_fallbacks() const;
   bigint prune_atom_fallbacks() const { return prune_atom_fallbacks_; }
 
+  // the communication of one stage of a force evaluation (sph_astro_force_evaluation.h):
+  // owned -> ghost copies of these arrays, or the ghosts' parts summed into their owners
+  void forward(std::initializer_list<SPHAstro::CommField> fields);
+  void reverse(std::initializer_list<SPHAstro::CommField> fields);
+
  protected:
   SPHAstro::PairOptions *opt_;
   SPHAstro::Fields *fields_;
@@ -129,16 +136,7 @@ class PairSPHAstro : public Pair {
   SPHAstro::EntropyIndex *entropy_index_;
   SPHAstro::ContinuityIndex *continuity_index_;
 
-  // smoothing length: fixed, evolved by dh/dt (both with h_ij = (h_i + h_j)/2 in every pair
-  // term), or iterated with rho (W(h_i) and W(h_j), grad-h factor Omega); read from fix
-  // sph/astro/h at init
-  enum class HMode { FIXED, DHDT, GRADH };
-  HMode hmode_;
-  double hfact_, h_tolerance_, h_margin_;
-  int h_max_iterations_;
-  bool entropy_;    // fix sph/astro thermal entropy: P = A rho^gamma
-  bool switch_;     // fix sph/astro/switch: per-particle alpha (d_alpha)
-  bool curl_on_;    // curl v needed (Balsara or the Cullen-Dehnen switch)
+  SPHAstro::Scheme *scheme_;    // what the package's fixes ask for (sph_astro_scheme.h)
   bool entropy_init_pending_, density_init_pending_;
   double *alpha_atom_;
   double *hcap_type_;       // margin x the largest h of each type at init
@@ -150,20 +148,12 @@ class PairSPHAstro : public Pair {
 
   // communication: the arrays a stage sends (forward) or sums (reverse)
   SPHAstro::CommTable *comm_table_;
-  void forward(std::initializer_list<SPHAstro::CommField> fields);
-  void reverse(std::initializer_list<SPHAstro::CommField> fields);
-  void forward_state();
 
   void allocate();
-  bool gradh() const { return hmode_ == HMode::GRADH; }
-  bool ghosts_need_u() const;
+  bool gradh() const;
   void grow_fields();
   SPHAstro::PassContext context();
-  void density_stage(SPHAstro::PassContext &ctx);
-  void gradient_stage(SPHAstro::PassContext &ctx);
-  void force_stage(SPHAstro::PassContext &ctx);
-  void conduction_stage(SPHAstro::PassContext &ctx);
-  void equation_of_state(const SPHAstro::PassContext &ctx);
+  SPHAstro::GradhSettings gradh_settings() const;
 };
 
 }    // namespace LAMMPS_NS

@@ -1,0 +1,157 @@
+/* ----------------------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
+#include "sph_astro_force_evaluation.h"
+
+#include "sph_astro_neighbour_lists.h"
+
+#include <cmath>
+
+namespace SPHAstro {
+
+EvaluationResult ForceEvaluation::run(NeighbourLists &lists, const GradhSettings &gradh,
+                                      GradhStatistics &hstats, const double *hcap_type,
+                                      bool initialise_density, bool initialise_entropy)
+{
+  EvaluationResult result;
+  hcap_type_ = hcap_type;
+  if (!scheme_.gradh()) ctx_.half = lists.half(a_.h);
+  density(gradh, hstats, initialise_density, result);
+  if (scheme_.gradh()) ctx_.half = lists.half(a_.h);    // h is that of the iteration now
+  equation_of_state(initialise_entropy);
+  gradients();
+  // pressure-energy with grad-h terms: div v and curl v above are those of the mass density
+  // and Omega; now rho_i = P_i / ((gamma-1) u_i) and the EOS again (P = (gamma-1) rho u)
+  if (scheme_.gradh() && o_.pressure_energy) {
+    pressure_energy_density(ctx_, ctx_.f->energy_sum);
+    equation_of_state(false);
+  }
+  forward_state();
+  force();
+  if (o_.physical_conduction()) conduction();
+  return result;
+}
+
+void ForceEvaluation::density(const GradhSettings &gradh, GradhStatistics &hstats, bool initialise,
+                              EvaluationResult &result)
+{
+  Fields &f = *ctx_.f;
+  if (scheme_.hmode == Scheme::HMode::DHDT)
+    exchange_.forward({{a_.h, nullptr, 1, false}});    // the ghosts' h of this step
+  if (o_.pressure_energy) exchange_.forward({{ctx_.uest, nullptr, 1, false}});    // their u
+  if (scheme_.gradh()) {
+    if (gradh.sums != VelocitySums::NONE) exchange_.forward({{nullptr, ctx_.vest, 3, false}});
+    density_gradh(ctx_, gradh, hstats);
+    result.counted = true;
+    result.list_fallbacks = hstats.list_fallbacks;
+    result.h_failures = hstats.failures;
+    return;
+  }
+  if (o_.density_continuity && !initialise) return;    // counted only if asked for
+  density_summation(ctx_, o_.symmetrise_kernel, o_.pressure_energy);
+  result.counted = true;
+  if (ctx_.newton)
+    exchange_.reverse({{ctx_.rho_sum, nullptr, 1, false}, {f.nneigh, nullptr, 1, false}});
+  if (o_.pressure_energy) pressure_energy_density(ctx_, ctx_.rho_sum);
+  if (o_.density_continuity)    // the integrated density starts from one summation
+    for (int i = 0; i < ctx_.p.nlocal; i++) a_.rhoest[i] = ctx_.rho_sum[i];
+}
+
+void ForceEvaluation::equation_of_state(bool initialise_entropy)
+{
+  SPHAstro::equation_of_state(ctx_, o_.eos, hcap_type_, o_.density_continuity,
+                              scheme_.entropy ? &a_.entropy : nullptr, initialise_entropy);
+}
+
+void ForceEvaluation::gradients()
+{
+  Fields &f = *ctx_.f;
+  const bool gradh = scheme_.gradh();
+  if (o_.reconstruction()) {    // grad v (and from it div v and curl v)
+    if (!gradh) {
+      exchange_.forward({{nullptr, ctx_.vest, 3, false}});
+      velocity_sums(ctx_, o_.symmetrise_kernel, VelocitySums::GRADIENT);
+      if (ctx_.newton) exchange_.reverse({{nullptr, f.vgsum, VGRAD_SUMS, false}});
+    }
+    finish_velocity_gradient(ctx_, o_.recon_trigger, scheme_.curl);
+    if (scheme_.curl) finish_curl(ctx_, gradh, o_.balsara);
+  } else if (scheme_.curl) {
+    if (!gradh) {    // (with grad-h terms the sums come from the h iteration)
+      exchange_.forward({{nullptr, ctx_.vest, 3, false}});
+      velocity_sums(ctx_, o_.symmetrise_kernel, VelocitySums::CURL);
+      if (ctx_.newton) exchange_.reverse({{nullptr, f.dcurl, 4, false}});
+    }
+    finish_curl(ctx_, gradh, o_.balsara);
+  }
+}
+
+// the ghosts' copy of what the force pass reads; u_est goes with it where a term reads the
+// partner's u (with formulation pressure-energy it went before the density pass already)
+void ForceEvaluation::forward_state()
+{
+  Fields &f = *ctx_.f;
+  const bool gradh = scheme_.gradh();
+  const bool ghost_u =
+      o_.eos.uses_energy() && (o_.conductivity > 0.0 || o_.conduction > 0.0) && !o_.pressure_energy;
+  exchange_.forward({{ctx_.rho, nullptr, 1, false},
+                     {f.pressure, nullptr, 1, false},
+                     {f.soundspeed, nullptr, 1, false},
+                     {nullptr, ctx_.vest, 3, false},
+                     {gradh ? a_.h : nullptr, nullptr, 1, false},
+                     {gradh ? f.omega : nullptr, nullptr, 1, false},
+                     {gradh && o_.pressure_energy ? f.pe_gradh : nullptr, nullptr, 1, false},
+                     {const_cast<double *>(ctx_.alpha), nullptr, 1, false},
+                     {ghost_u ? ctx_.uest : nullptr, nullptr, 1, false},
+                     {o_.balsara ? f.balsara : nullptr, nullptr, 1, false},
+                     {nullptr, o_.reconstruction() ? f.vgrad : nullptr, VGRAD_DATA, false}});
+}
+
+void ForceEvaluation::force()
+{
+  Fields &f = *ctx_.f;
+  const int nlocal = ctx_.p.nlocal;
+  const int nall = ctx_.p.nall;
+  const bool gradh = scheme_.gradh();
+  if (o_.pressure_geometric)    // g = sqrt(P)/rho of owned and ghost atoms
+    for (int i = 0; i < nall; i++)
+      f.pressure_factor[i] = pressure_geometric_factor(f.pressure[i], ctx_.rho[i]);
+  else if (o_.pressure_energy)    // (gamma-1) u = P/rho of owned and ghost atoms
+    for (int i = 0; i < nall; i++) f.pressure_factor[i] = f.pressure[i] / ctx_.rho[i];
+
+  const ForceSettings s = force_settings(o_, gradh, ctx_.alpha != nullptr);
+  force_pass(ctx_, s, gradh || o_.symmetrise_kernel, o_.symmetrise_kernel);
+  if (ctx_.newton)
+    exchange_.reverse({{s.energy ? ctx_.dudt : nullptr, nullptr, 1, false},
+                       {f.vdotgradw, nullptr, 1, false},
+                       {s.signal ? f.vsigmax : nullptr, nullptr, 1, true},
+                       {s.alpha_u > 0.0 ? f.condrate : nullptr, nullptr, 1, false}});
+  finish_force(ctx_, s);
+  if (s.energy)
+    thermal_rates(ctx_, o_.eos, gradh && !o_.pressure_energy, o_.pressure_geometric,
+                  scheme_.entropy ? a_.entropy.dAdt : nullptr);
+  // drho_i/dt = sum_j m_j v_ij . grad_i W_ij (Monaghan 1992, eq. 2.12), integrated by fix
+  // sph/astro
+  if (o_.density_continuity)
+    for (int i = 0; i < nlocal; i++) a_.drhodt[i] = f.vdotgradw[i];
+}
+
+// physical heat conduction: a pass of its own, only when kappa > 0
+void ForceEvaluation::conduction()
+{
+  Fields &f = *ctx_.f;
+  conduction_pass(ctx_, o_.conduction, scheme_.gradh() || o_.symmetrise_kernel);
+  if (ctx_.newton) exchange_.reverse({{f.conduct, nullptr, 1, false}});
+  const int nlocal = ctx_.p.nlocal;
+  for (int i = 0; i < nlocal; i++) ctx_.dudt[i] += f.conduct[i];
+  if (scheme_.entropy) {
+    const double g1 = o_.eos.gamma - 1.0;
+    for (int i = 0; i < nlocal; i++)
+      a_.entropy.dAdt[i] += g1 * std::pow(ctx_.rho[i], -g1) * f.conduct[i];
+  }
+}
+
+}    // namespace SPHAstro
