@@ -7,14 +7,13 @@
 
 // The neighbour passes of pair sph/astro. Each is one pair_loop() (sph_astro_pair_loop.h)
 // with an interaction adapter around the functions of sph_astro_iact.h, compiled per kernel,
-// dimension and kernel form; the options of a scene are run-time values. The passes read
-// and write plain arrays: they do not communicate (pair sph/astro sums the ghosts' parts
-// with a reverse communication after a pass and sends what the next pass needs).
+// dimension and kernel form; the options of a scene are run-time values (but for the few
+// compiled in where they cost: doc/architecture.md). The passes read and write plain arrays:
+// they do not communicate (pair sph/astro sums the ghosts' parts with a reverse
+// communication after a pass and sends what the next pass needs).
 //
-// The order in one force evaluation (PairSPHAstro::compute): density (summation, h-rho
-// iteration with its velocity sums, or none with density continuity) -> equation of state ->
-// velocity sums (Balsara, Cullen-Dehnen, reconstruction) -> forward communication -> force
-// -> conduction.
+// The order of the passes in one force evaluation, with the communication between them:
+// sph_astro_force_evaluation.h.
 
 #ifndef LMP_SPH_ASTRO_PASSES_H
 #define LMP_SPH_ASTRO_PASSES_H
