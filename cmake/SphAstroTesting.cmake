@@ -19,7 +19,7 @@ set(SPH_ASTRO_TEST_OUTPUT ${CMAKE_BINARY_DIR}/test_output)
 #
 # Builds test_<name> from test_<name>.cpp and registers it as the test <name>. Without LAMMPS:
 # a pure unit (sph_astro_core, GoogleTest's main), label unit. With LAMMPS: linked to
-# liblammps, SPH_ASTRO_PLUGIN is the plugin's path (the tests load it themselves, so the test
+# liblammps with lammps_test_main.cpp (MPI around the tests), SPH_ASTRO_PLUGIN is the plugin's path (the tests load it themselves, so the test
 # gets no LAMMPS_PLUGIN_PATH), run in the build's unittest directory, label lammps.
 function(sph_astro_add_gtest name)
   cmake_parse_arguments(PARSE_ARGV 1 T "LAMMPS" "" "INCLUDE")
@@ -32,6 +32,7 @@ function(sph_astro_add_gtest name)
   endif()
   add_test(NAME ${name} COMMAND test_${name})
   if(T_LAMMPS)
+    target_sources(test_${name} PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/lammps_test_main.cpp)
     target_link_libraries(test_${name} PRIVATE lammps_headers lammps_shared GTest::gtest)
     target_compile_definitions(test_${name} PRIVATE
       SPH_ASTRO_PLUGIN="${CMAKE_BINARY_DIR}/plugins/sphastroplugin.so")

@@ -558,12 +558,3 @@ TEST_F(BadInput, TimestepCollapseStopsTheRun)
   commands(lmp, {"unfix gas", "fix gas all sph/astro dtmin 1.0"});
   expect_error("run 10", "fell below dtmin = 1");
 }
-
-int main(int argc, char **argv)
-{
-  MPI_Init(&argc, &argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  const int rc = RUN_ALL_TESTS();
-  MPI_Finalize();
-  return rc;
-}

@@ -469,12 +469,3 @@ TEST(FixSPHAstroH, DhdtFollowsTheDivergence)
 
 // ------------------------------------------------- viscosity switch,
 // conductivity
-
-int main(int argc, char **argv)
-{
-  MPI_Init(&argc, &argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  const int rc = RUN_ALL_TESTS();
-  MPI_Finalize();
-  return rc;
-}

@@ -878,12 +878,3 @@ INSTANTIATE_TEST_SUITE_P(SPHAstro, GoldenRestart, ::testing::ValuesIn(restart_sy
                          param_name);
 
 INSTANTIATE_TEST_SUITE_P(SPHAstro, GoldenDataFile, ::testing::ValuesIn(system_names()), param_name);
-
-int main(int argc, char **argv)
-{
-  MPI_Init(&argc, &argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  const int rc = RUN_ALL_TESTS();
-  MPI_Finalize();
-  return rc;
-}

@@ -449,12 +449,3 @@ TEST(GravityErrors, AtomWithoutSofteningLength)
   commands(lmp, {"pair_style sph/astro/gravity 30 h 0.5", "pair_coeff * *"});
   EXPECT_EQ(error_of(lmp, "run 0"), "");
 }
-
-int main(int argc, char **argv)
-{
-  MPI_Init(&argc, &argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  const int rc = RUN_ALL_TESTS();
-  MPI_Finalize();
-  return rc;
-}

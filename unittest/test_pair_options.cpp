@@ -619,12 +619,3 @@ TEST_F(BadOptionInput, PressureEnergyNamesWhatItNeeds)
                "formulation pressure-energy: atom 3 has specific internal energy u = 0; this "
                "formulation needs u > 0");
 }
-
-int main(int argc, char **argv)
-{
-  MPI_Init(&argc, &argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  const int rc = RUN_ALL_TESTS();
-  MPI_Finalize();
-  return rc;
-}

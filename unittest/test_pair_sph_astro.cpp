@@ -477,12 +477,3 @@ TEST(PairSPHAstro, IsolatedParticleStaysFinite)
   EXPECT_DOUBLE_EQ(u[last], 1.0);
   EXPECT_DOUBLE_EQ(vx[last], 0.0);
 }
-
-int main(int argc, char **argv)
-{
-  MPI_Init(&argc, &argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  const int rc = RUN_ALL_TESTS();
-  MPI_Finalize();
-  return rc;
-}

@@ -307,12 +307,3 @@ TEST_F(BadPhysicsInput, ConductionNeedsTheIdealGas)
                "pair_style sph/astro: conduction 1 needs eos ideal (the energy equation); eos "
                "isothermal does not evolve u");
 }
-
-int main(int argc, char **argv)
-{
-  MPI_Init(&argc, &argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  const int rc = RUN_ALL_TESTS();
-  MPI_Finalize();
-  return rc;
-}
