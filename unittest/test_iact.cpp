@@ -214,8 +214,20 @@ TEST(PairInteraction, GeometricPressureTermAndWork)
   p.g.dwj = p.g.dwi;
   ForceContribution c;
   iact_force(s, p.i, p.j, p.dx, p.dy, p.dz, p.g, c);
-  EXPECT_NEAR(c.fpair, -p.i.m * p.j.m * pressure_geometric_term(p.i.prho, p.j.prho) * p.g.dwi,
-              1e-14);
+  // 2 sqrt(P_i P_j)/(rho_i rho_j) in place of P_i/rho_i^2 + P_j/rho_j^2
+  const double geo = 2.0 * std::sqrt(p.i.P * p.j.P) / (p.i.rho * p.j.rho);
+  EXPECT_NEAR(c.fpair, -p.i.m * p.j.m * geo * p.g.dwi, 1e-13);
+  // below the standard term where P/rho^2 differ (arithmetic-geometric mean)
+  ForceSettings st = s;
+  st.pressure = PressureForm::STANDARD;
+  Pair q = p;
+  for (ForceParticle *x : {&q.i, &q.j}) {
+    x->prho = x->P / (x->rho * x->rho);
+    x->b = 1.0;
+  }
+  ForceContribution cs;
+  iact_force(st, q.i, q.j, q.dx, q.dy, q.dz, q.g, cs);
+  EXPECT_LT(std::fabs(c.fpair), std::fabs(cs.fpair));
   const double vdotr =
       (p.i.vx - p.j.vx) * p.dx + (p.i.vy - p.j.vy) * p.dy + (p.i.vz - p.j.vz) * p.dz;
   EXPECT_NEAR(c.heat_i, p.j.m * p.i.prho * p.j.prho * vdotr * p.g.dwi, 1e-14);

@@ -40,20 +40,14 @@ TEST(Conductivity, CoefficientIsTheSignalOverTheMeanDensityForBothPartners)
   EXPECT_EQ(conductivity_coefficient(1.0, 0.7, 0.7, 1.0), 0.0);
 }
 
-// Geometric-mean pressure term: 2 sqrt(P_i P_j)/(rho_i rho_j) replaces
-// P_i/rho_i^2 + P_j/rho_j^2; equal where P/rho^2 is equal, below it elsewhere (AM-GM)
-TEST(PressureGeometric, TermIsTheGeometricMeanOfPOverRhoSquared)
+// the per-particle factor of the geometric-mean pressure term, g = sqrt(P)/rho (the term
+// itself and its energy: test_iact.cpp, which calls the interaction the pair loop runs)
+TEST(PressureGeometric, FactorIsTheRootOfPOverRhoSquared)
 {
-  const double Pi = 1.3, rhoi = 0.9, Pj = 0.2, rhoj = 0.4;
-  const double gi = pressure_geometric_factor(Pi, rhoi), gj = pressure_geometric_factor(Pj, rhoj);
-  EXPECT_NEAR(pressure_geometric_term(gi, gj), 2.0 * std::sqrt(Pi * Pj) / (rhoi * rhoj), 1e-15);
-  EXPECT_LT(pressure_geometric_term(gi, gj), Pi / (rhoi * rhoi) + Pj / (rhoj * rhoj));
+  EXPECT_NEAR(pressure_geometric_factor(1.3, 0.9), std::sqrt(1.3) / 0.9, 1e-15);
   const double g = pressure_geometric_factor(0.7, 1.1);
-  EXPECT_NEAR(pressure_geometric_term(g, g), 2.0 * 0.7 / (1.1 * 1.1), 1e-15);
+  EXPECT_NEAR(g * g, 0.7 / (1.1 * 1.1), 1e-15);
 }
-
-// (the energy of a pair with the geometric pressure term: test_iact.cpp, which calls the
-// interaction the pair loop runs)
 
 // Continuity equation (Monaghan 1992, ARA&A 30, 543): zero for equal velocities whatever the
 // kernel; a pair

@@ -341,12 +341,22 @@ void PairSPHAstro::compute(int eflag, int vflag)
 void PairSPHAstro::forward(std::initializer_list<CommField> fields)
 {
   const int size = comm_table_->set(fields);
+  if (size < 0 || size > comm_forward)
+    error->one(FLERR,
+               "pair_style sph/astro: a forward stage sends {} values per atom, more than "
+               "the {} its buffer holds (a bug: please report it)",
+               size, comm_forward);
   if (size) comm->forward_comm(this, size);
 }
 
 void PairSPHAstro::reverse(std::initializer_list<CommField> fields)
 {
   const int size = comm_table_->set(fields);
+  if (size < 0 || size > comm_reverse)
+    error->one(FLERR,
+               "pair_style sph/astro: a reverse stage sends {} values per atom, more than "
+               "the {} its buffer holds (a bug: please report it)",
+               size, comm_reverse);
   if (size) comm->reverse_comm(this, size);
 }
 

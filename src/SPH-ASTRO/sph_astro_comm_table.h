@@ -30,13 +30,15 @@ class CommTable {
   using Field = CommField;
   static constexpr int MAX_FIELDS = 16;
 
-  // the fields of the next stage; returns the values per atom it sends
+  // the fields of the next stage; returns the values per atom it sends, or -1 for more than
+  // MAX_FIELDS arrays
   int set(std::initializer_list<Field> fields)
   {
     n_ = 0;
     size_ = 0;
     for (const Field &field : fields)
-      if ((field.scalar || field.vector) && n_ < MAX_FIELDS) {
+      if (field.scalar || field.vector) {
+        if (n_ == MAX_FIELDS) return -1;
         fields_[n_++] = field;
         size_ += field.ncol;
       }

@@ -104,7 +104,7 @@ void ForceEvaluation::forward_state()
                      {gradh ? a_.h : nullptr, nullptr, 1, false},
                      {gradh ? f.omega : nullptr, nullptr, 1, false},
                      {gradh && o_.pressure_energy ? f.pe_gradh : nullptr, nullptr, 1, false},
-                     {const_cast<double *>(ctx_.alpha), nullptr, 1, false},
+                     {ctx_.alpha, nullptr, 1, false},
                      {ghost_u ? ctx_.uest : nullptr, nullptr, 1, false},
                      {o_.balsara ? f.balsara : nullptr, nullptr, 1, false},
                      {nullptr, o_.reconstruction() ? f.vgrad : nullptr, VGRAD_DATA, false}});

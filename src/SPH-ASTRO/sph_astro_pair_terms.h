@@ -20,18 +20,13 @@ namespace SPHAstro {
 // Geometric-mean pressure term (an alternative symmetrisation of the pressure force):
 //   1/2 (P_i/rho_i^2 + P_j/rho_j^2)  ->  sqrt(P_i P_j)/(rho_i rho_j)
 // so the pair term of the momentum equation is 2 sqrt(P_i P_j)/(rho_i rho_j) = 2 g_i g_j with
-// g = sqrt(P)/rho per particle; the energy equation in the same form (as Monaghan 1992 pairs
+// g = sqrt(P)/rho per particle (iact_force, sph_astro_iact.h); the energy equation in the same form (as Monaghan 1992 pairs
 // the energy equation with the force) gives both partners the P dV work
 //   du_i/dt = sum_j m_j g_i g_j v_ij . grad_i W_ij,
 // so m_i du_i + m_j du_j = -(work of the pair force): the total energy is conserved.
 inline double pressure_geometric_factor(double P, double rho)
 {
   return std::sqrt(P) / rho;
-}
-
-inline double pressure_geometric_term(double gi, double gj)
-{
-  return 2.0 * gi * gj;
 }
 
 // Continuity equation in the form that vanishes for uniform motion (Monaghan 1992, eq. 2.12):

@@ -46,7 +46,7 @@ struct PassContext {
   double **vest;      // predicted v
   double *dudt;
   double **force;
-  const double *alpha;    // per-atom alpha of a viscosity switch, or null
+  double *alpha;    // per-atom alpha of a viscosity switch (owned + ghost), or null
   const LAMMPS_NS::tagint *tag;
   LAMMPS_NS::Error *error;
   LAMMPS_NS::Pair *tally;    // non-null: tally the pair virial (ev_tally)
