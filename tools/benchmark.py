@@ -18,9 +18,12 @@ support 2h), fixed dt = 0.2 h / c, ``--steps`` steps after the set-up.  ``lmp`` 
 * Mps/s and Mps/s/core: million particle-steps per second (per MPI rank);
 * us/ps: microseconds per particle-step (loop_s / (N steps)); flat in N for linear scaling;
   us*core/ps multiplies it by the ranks;
-* pair%, neigh%, comm%: shares of the loop time from LAMMPS' timing breakdown;
-* nlist: neighbours per particle in LAMMPS' list (2 x ``Ave neighs/atom`` of the half list,
-  cutoff 2h + skin), nkern: mean neighbours inside the kernel support 2h (pair's count);
+* pair%, neigh%, comm%: shares of the loop time from LAMMPS' timing breakdown (pair
+  sph/astro makes its own neighbour lists: their time is part of pair%);
+* nlist: neighbours per particle in the pair style's list: 2 x the half-list entries per
+  particle of pair sph/astro's own lists (its end-of-run line "pair sph/astro neighbour
+  search: ..."), else 2 x LAMMPS' ``Ave neighs/atom`` of a half list (nan if neither);
+  nkern: mean neighbours inside the kernel support 2h (pair's count);
 * RSS_MB: peak resident memory summed over the ranks (``/usr/bin/time -f %M`` around each rank;
   fallback ``getrusage(RUSAGE_CHILDREN)``), B/part: RSS / N, dB/part: marginal bytes per particle
   between consecutive sizes (removes the fixed ~30 MB of the executable and libraries);
@@ -47,6 +50,8 @@ _LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d
 _MEM = re.compile(r"^Per MPI rank memory allocation \(min/avg/max\) = (\S+) \| (\S+) \| (\S+)",
                   re.M)
 _NEIGH = re.compile(r"^Ave neighs/atom = (\S+)", re.M)
+_SEARCH = re.compile(r"^pair sph/astro neighbour search:.*?per particle: (\S+) half-list entries",
+                     re.M)
 _SECTION = re.compile(r"^(Pair|Neigh|Comm|Output|Modify|Other)\s*\|.*\|\s*(\S+)\s*$", re.M)
 _NEWTON_OFF = re.compile(r"^\s*newton\s+off", re.M)
 
@@ -70,6 +75,7 @@ def parse_log(path):
     loop_s, procs, steps, natoms = loops[-1]
     mem = _MEM.findall(text)
     neigh = _NEIGH.findall(text)
+    search = _SEARCH.findall(text)
     sections = {name: float(pct) for name, pct in _SECTION.findall(text)}
     # thermo: the c_nn column (mean neighbours inside the support) of the last thermo line
     nkern = float("nan")
@@ -90,7 +96,10 @@ def parse_log(path):
         "loop_s": float(loop_s), "procs": int(procs), "steps": int(steps), "N": int(natoms),
         "mem_avg_mb": float(mem[-1][1]) if mem else float("nan"),
         "mem_max_mb": float(mem[-1][2]) if mem else float("nan"),
-        "nlist": (2.0 if half else 1.0) * float(neigh[-1]) if neigh else float("nan"),
+        # pair sph/astro searches its neighbours itself (LAMMPS' count is then 0)
+        "nlist": 2.0 * float(search[-1]) if search
+        else (2.0 if half else 1.0) * float(neigh[-1]) if neigh and float(neigh[-1]) > 0
+        else float("nan"),
         "nkern": nkern,
         "sections": sections,
     }
@@ -156,7 +165,7 @@ def format_table(rows, args):
            f"h=1.2(m/rho)^(1/3), fixed dt=0.2h/c, {args.np} MPI rank(s), {args.steps} steps"
            + (f", -var {' '.join(args.var)}" if args.var else ""),
            "# loop_s: LAMMPS Loop time (set-up excluded); Mps/s: 1e6 particle-steps/s; us/ps: "
-           "microseconds per particle-step; nlist: full-list neighbours (2x half list, 2h+skin);"
+           "microseconds per particle-step; nlist: list neighbours (2x half list, 2h+skin);"
            " nkern: neighbours inside 2h; RSS_MB: peak RSS summed over ranks; dB/part: "
            "marginal RSS per added particle; lmp_MB: LAMMPS' memory estimate x ranks",
            "  ".join(c.rjust(w) for c, w in zip(cols, widths))]

@@ -38,7 +38,7 @@ SCENES = {
                                               "-var", "cond", "1.0"]),
     # Sod with fixed h (mean h_ij kernels)
     "sod_fixed_h": ("examples/sod/in.sod", ["-var", "hmode", "fixed", "-var", "hfact", "1.5"]),
-    # Sedov blast, 16 384 particles, variable h with list rebuilds
+    # Sedov blast, 16 384 particles, variable h over a wide range (ghost cutoff widened)
     "sedov16": ("examples/sedov/in.sedov", ["-var", "n", "16"]),
 }
 

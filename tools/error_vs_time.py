@@ -245,11 +245,10 @@ SCENES: Dict[str, Scene] = {
             # 2 OpenMP threads, L1(rho) per particle over |x| < 0.5); ny 8 and these nx give
             # its exact particle counts (4 x 8^2 x nx left, an eighth of that right)
             resolutions=(57, 129, 273), np=2, var=("ny=8", "switch=cd"),
-            # the third: Wendland C4 at hfact 1.6 with Courant 0.6, margin 1.4, skin 1.0 and
-            # neighbour bins of a quarter of the left state's cutoff (binsize 0.95 h)
-            # (examples/sod/README.md: the settings that beat Phantom's time by 4x)
+            # the third: Wendland C4 at hfact 1.6 with Courant 0.6, margin 1.4 and skin 1.0
+            # (examples/sod/README.md)
             variants="kernel=m4,hfact=1.2;kernel=m6,hfact=1.0;"
-                     "kernel=wendland/c4,hfact=1.6,courant=0.6,margin=1.4,skin=1.0,binsize=0.95",
+                     "kernel=wendland/c4,hfact=1.6,courant=0.6,margin=1.4,skin=1.0",
             reference_label="Phantom (2 OpenMP threads)",
             reference=((16416, 44.0, 1.56e-2), (37152, 131.0, 7.46e-3), (78624, 536.0, 3.85e-3)),
             notes="Phantom's particle counts, variable h + Cullen-Dehnen switch, 2 MPI ranks")}),

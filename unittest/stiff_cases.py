@@ -29,7 +29,8 @@ and pass the physics checks of the case. The cases:
    reported: median pressure of each gas and of the dense gas beyond 2 h of the contact
    (not within 20 % yet: the contact pressure blip of plain SPH).
 4. ``isolated_particle``: a cold cluster plus one particle far from it: its density is
-   m W(0, h) exactly (h at the cap of fix sph/astro/h), v and u do not change, dt finite.
+   m W(0, h) exactly (h at the cap of fix sph/astro/h, its hmax), v and u do not change, dt
+   finite.
    ``single_particle``: the same particle alone in the box.
 5. ``ballistic_sphere``: a uniform cold sphere (u = 1e-8) expanding ballistically into
    vacuum, v = H r with H = 1, to t = 1 (radius doubles): v stays v0, x = x0 + v0 t,
@@ -102,11 +103,12 @@ def dt_estimate(h, c, v=0.0, alpha=1.0, beta=2.0, courant=0.3):
 PAIR_OPTIONS = ""
 
 
-def pair_and_fixes(tend, dt0, thermal="energy", margin=1.5, hfact=1.2, extra=""):
+def pair_and_fixes(tend, dt0, thermal="energy", margin=1.5, hfact=1.2, extra="", hmax=None):
+    hmax_option = f" hmax {hmax:.10g}" if hmax else ""
     return f"""pair_style      sph/astro kernel m4 eos ideal {GAMMA:.10g} viscosity classic 1.0 2.0 {PAIR_OPTIONS}
 pair_coeff      * *
 fix             gas all sph/astro courant 0.3 tend {tend} dtmin {1e-9 * dt0:.3g} thermal {thermal}
-fix             hvar all sph/astro/h iterate hfact {hfact} margin {margin}
+fix             hvar all sph/astro/h iterate hfact {hfact} margin {margin}{hmax_option}
 {extra}"""
 
 
@@ -301,7 +303,7 @@ reset_atoms     id sort yes
 set             type 1 d_u {u1:.10g}
 set             type 2 d_h {h2:.10g}
 set             type 2 d_u {u2:.10g}
-neighbor        {0.3 * h1:.6g} multi
+neighbor        {0.3 * h1:.6g} bin
 # a tenuous particle's support (2 x 1.3 x its h = 2 in the cutoff) covers thousands of dense ones
 neigh_modify    one 20000 page 400000
 """ + MONITORS.format(every=20) + """timestep        1e-5
@@ -357,12 +359,13 @@ create_box      2 box
 mass            * {m:.10g}
 reset_atoms     id sort yes
 group           iso type 2
-""" + pair_and_fixes(tend, dt_estimate(h0, 0.1), margin=margin) + f"""set             type 1 d_h {h0:.10g}
+""" + pair_and_fixes(tend, dt_estimate(h0, 0.1), margin=margin,
+                    hmax=margin * hiso) + f"""set             type 1 d_h {h0:.10g}
 set             type 1 d_u 0.01
 set             type 2 d_h {hiso:.10g}
 set             type 2 d_u {uiso:.10g}
 velocity        iso set {viso} 0.0 0.0 units box
-neighbor        {0.3 * h0:.6g} multi
+neighbor        {0.3 * h0:.6g} bin
 """ + MONITORS.format(every=10) + """timestep        1e-5
 run             100000
 """ + DUMP.format(name="dump.final")

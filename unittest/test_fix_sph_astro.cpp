@@ -477,15 +477,15 @@ TEST_F(BadInput, FixArguments)
 
 TEST_F(BadInput, SmoothingLengthFixArguments)
 {
-  expect_error("fix hvar all sph/astro/h iterate rebuild 1.5", "rebuild = 1.5 must be in");
-  expect_error("fix hvar all sph/astro/h iterate margin 1.5 rebuild 0.5",
-               "rebuild = 0.5 must exceed 1/margin");
-  expect_error("fix hvar all sph/astro/h dhdt collections 0", "collections = 0 must be auto");
-  expect_error("sph/astro/run", "sph/astro/run takes N [upto]");
-  expect_error("sph/astro/run 10 later", "unknown keyword 'later'");
-  valid_setup();
-  commands(lmp, {"fix hvar all sph/astro/h iterate collections auto", "neighbor 0.2 bin"});
-  expect_error("run 0", "collections needs neighbor style multi");
+  expect_error("fix hvar all sph/astro/h iterate margin 0.9", "margin = 0.9 must be >= 1");
+  expect_error("fix hvar all sph/astro/h iterate rebuild 0.9",
+               "unknown keyword 'rebuild'; allowed: hfact, tol, maxiter, margin, hmax (the "
+               "package's neighbour search follows h within a run");
+  expect_error("fix hvar all sph/astro/h dhdt collections auto",
+               "unknown keyword 'collections'; allowed: margin, hmax (the package's neighbour");
+  expect_error("fix hvar all sph/astro/h dhdt hfact 1.2",
+               "unknown keyword 'hfact'; allowed: margin, hmax");
+  expect_error("fix hvar all sph/astro/h iterate hmax 0", "hmax = 0 must be > 0");
 }
 
 TEST_F(BadInput, SwitchArguments)

@@ -5,17 +5,19 @@
    (the same licence as LAMMPS); see the LICENSE file.
 ------------------------------------------------------------------------- */
 
-// LAMMPS-driven tests of fix sph/astro/h: the h-rho iteration, dh/dt, h collections, lists
-// that follow h and the pruned lists.
+// LAMMPS-driven tests of fix sph/astro/h and the package's neighbour search: the h-rho
+// iteration, dh/dt, lists and ghosts that follow h.
 
 #include "styles_fixture.h"
 
 #include "compute.h"
 #include "fix.h"
 #include "force.h"
-#include "neigh_list.h"
+#include "neighbor.h"
 #include "pair.h"
-#include "sph_astro_pruned_list.h"
+#include "sph_astro_kernel.h"
+#include "sph_astro_neigh_view.h"
+#include "sph_astro_neighbour_lists.h"
 
 #include <cmath>
 #include <cstdio>
@@ -67,22 +69,6 @@ TEST(FixSPHAstroH, IterationConvergesOnADisorderedGlass)
   EXPECT_EQ(fix->compute_vector(3), 0.0);
 }
 
-// mean and largest neighbour-list length of the local atoms of the pair's list(s)
-static std::pair<double, int> list_lengths(const std::unique_ptr<LAMMPS> &lmp, int type_only)
-{
-  auto *list = lmp->force->pair->list;
-  double sum = 0.0;
-  int n = 0, most = 0;
-  for (int ii = 0; ii < list->inum; ii++) {
-    const int i = list->ilist[ii];
-    if (type_only && lmp->atom->type[i] != type_only) continue;
-    sum += list->numneigh[i];
-    most = std::max(most, list->numneigh[i]);
-    n++;
-  }
-  return {n ? sum / n : 0.0, most};
-}
-
 // a dense fcc clump (lattice constant 1, rho = 1) in a tenuous fcc gas (lattice constant
 // a_out) of equal-mass particles, one atom type; h iterated from a rough start
 static std::unique_ptr<LAMMPS> clump_in_tenuous_gas(double a_out, int cells_out, int clump,
@@ -120,7 +106,6 @@ static std::unique_ptr<LAMMPS> clump_in_tenuous_gas(double a_out, int cells_out,
             "velocity all set 0 0 0",
             "fix hvar all sph/astro/h iterate hfact 1.2 tol 1e-8 margin 1.5 " + hfix_extra,
             "neighbor 0.3 " + nbin,
-            "neigh_modify one 20000 page 200000",
             "run 1"});
   return lmp;
 }
@@ -160,88 +145,117 @@ TEST(FixSPHAstroH, IterationConvergesOnAMillionToOneDensityContrast)
   EXPECT_NEAR(hmin, hdense, 0.02 * hdense);
 }
 
-TEST(FixSPHAstroH, CollectionsKeepTheListsOfSmallSmoothingLengthsShort)
+// the neighbour search's counters (pair sph/astro extract "search_statistics")
+static const SPHAstro::SearchStatistics &search_statistics(const std::unique_ptr<LAMMPS> &lmp)
 {
-  // rho 1 against 1e-3 (h ratio 10), 6912 clump particles: with one cutoff every clump
-  // particle's list spans the tenuous gas' kernel (the whole clump); with h collections it
-  // spans its own. Same h either way.
-  std::vector<double> mean(2), hmin(2), hmax(2);
-  for (int k : {0, 1}) {
-    auto lmp = clump_in_tenuous_gas(10.0, 6, 12, k ? "collections auto" : "", k ? "multi" : "bin");
-    const double worst = worst_h_error(lmp, hmin[k], hmax[k]);
-    auto *fix = lmp->modify->get_fix_by_id("hvar");
-    mean[k] = list_lengths(lmp, 0).first;
-    printf("1e3 contrast, %s: h %.3g..%.3g, mean list length %.0f, capped %.0f\n",
-           k ? "collections" : "one cutoff", hmin[k], hmax[k], mean[k], fix->compute_vector(3));
-    EXPECT_LT(worst, 1e-6);
-    EXPECT_EQ(fix->compute_vector(2), 0.0);
-    EXPECT_EQ(fix->compute_vector(3), 0.0);
-  }
-  EXPECT_NEAR(hmin[1], hmin[0], 1e-9 * hmin[0]);
-  EXPECT_NEAR(hmax[1], hmax[0], 1e-9 * hmax[0]);
-  EXPECT_LT(mean[1], 0.2 * mean[0]);
+  int dim;
+  const auto *stats = static_cast<const SPHAstro::SearchStatistics *>(
+      lmp->force->pair->extract("search_statistics", dim));
+  EXPECT_NE(stats, nullptr);
+  return *stats;
 }
 
-// an expanding hot ball: h grows past margin x its start value; sph/astro/run rebuilds the
-// lists (rebuild) and the collections follow h, with the same result as one run with lists
-// wide enough from the start
-static std::map<int, double> expanding_ball(const std::string &hfix, const std::string &nbin,
-                                            const std::string &run, std::vector<double> &stats,
-                                            double skin = 0.1, const std::string &pair = PAIR)
+// the package's lists follow each particle's h: in a clump 1e3 denser than its surroundings
+// (h ratio 10, 6912 clump particles) a clump particle's list spans its own kernel, not the
+// tenuous gas' one. Half-list entries per atom against the kernel neighbours (gather count)
+TEST(NeighbourSearch, ListsOfSmallSmoothingLengthsStayShort)
 {
-  auto lmp = open_lammps();
-  gas(lmp, "ball", 6, pair, "sph/astro dt fixed", 1.0, 0.04);
-  commands(lmp,
-           {hfix + " tol 1e-10", "neighbor " + num(skin) + " " + nbin,
-            "neigh_modify every 1 delay 0 check yes one 10000", "timestep 0.004", run});
+  auto lmp = clump_in_tenuous_gas(10.0, 6, 12, "", "bin");
+  double hmin, hmax;
+  const double worst = worst_h_error(lmp, hmin, hmax);
   auto *fix = lmp->modify->get_fix_by_id("hvar");
-  stats.clear();
-  for (int k = 0; k < 9; k++) stats.push_back(fix->compute_vector(k));
-  return per_atom(lmp, "x", 0);
+  const auto &search = search_statistics(lmp);
+  int ncol;
+  const auto *nneigh = static_cast<double *>(lmp->force->pair->extract_peratom("nneigh", ncol));
+  ASSERT_NE(nneigh, nullptr);
+  double neighbours = 0.0;
+  for (int i = 0; i < lmp->atom->nlocal; i++) neighbours += nneigh[i];
+  neighbours /= lmp->atom->nlocal;
+  printf("1e3 contrast: h %.3g..%.3g, %.1f kernel neighbours, list entries per atom: half "
+         "%.1f, full %.1f\n",
+         hmin, hmax, neighbours, search.half_entries, search.full_entries);
+  EXPECT_LT(worst, 1e-6);
+  EXPECT_EQ(fix->compute_vector(2), 0.0);
+  EXPECT_EQ(fix->compute_vector(3), 0.0);
+  EXPECT_GT(hmax / hmin, 8.0);
+  // growth 1.1 and a skin of 0.3 (0.02-0.2 of a support): measured 3.05 and 1.77 times the
+  // kernel neighbours (the particles at the clump's surface see both densities); lists at the
+  // largest h, as LAMMPS' type cutoff makes them, would hold ~1000 times more for the clump
+  EXPECT_LT(search.full_entries, 3.5 * neighbours);
+  EXPECT_LT(search.half_entries, 2.0 * neighbours);
 }
 
-TEST(FixSPHAstroH, ListsFollowGrowingSmoothingLengths)
+// h by atom ID (owned atoms of a single rank)
+static std::map<int, double> h_by_tag(const std::unique_ptr<LAMMPS> &lmp)
 {
-  std::vector<double> ref_stats, stats;
-  const auto ref =
-      expanding_ball("fix hvar all sph/astro/h iterate margin 4.0", "bin", "run 150", ref_stats);
-  EXPECT_EQ(ref_stats[3], 0.0);    // margin 4: nobody reaches the cap
-  // margin 1.3 alone: particles are held at the cap
-  expanding_ball("fix hvar all sph/astro/h iterate margin 1.3", "bin", "run 150", stats);
-  EXPECT_GT(stats[3], 0.0);
-  // margin 1.3 with rebuild (and collections, with a skin wide enough that the lists are
-  // rebuilt because h outgrows its collection, not only because atoms move, and without the
-  // pruned lists, whose list builds would come first): no particle at the cap, the same
-  // trajectory
-  for (const std::string &variant : {"rebuild 0.9", "rebuild 0.9 collections auto"}) {
-    const bool coll = variant.find("collections") != std::string::npos;
-    const auto x = expanding_ball("fix hvar all sph/astro/h iterate margin 1.3 " + variant,
-                                  coll ? "multi" : "bin", "sph/astro/run 150", stats,
-                                  coll ? 0.8 : 0.1, std::string(PAIR) + (coll ? " prune no" : ""));
-    printf("%s: %.0f runs ended for a rebuild, %.0f collection rebuilds, capped %.0f\n",
-           variant.c_str(), stats[4], stats[5], stats[3]);
-    EXPECT_GE(stats[4], 1.0) << variant;
-    EXPECT_EQ(stats[3], 0.0) << variant;
-    if (coll) EXPECT_GE(stats[5], 1.0);
-    ASSERT_EQ(x.size(), ref.size());
-    double worst = 0.0;
-    for (const auto &[id, value] : ref) worst = std::max(worst, std::fabs(x.at(id) - value));
-    // the same to the h tolerance: a round-off change can add a Newton iteration
-    EXPECT_LT(worst, 1e-8) << variant;
-  }
+  return per_atom(lmp, "h");
 }
 
-// a gas of the given shape with pair sph/astro prune yes (prune = 1) or prune no
-static std::unique_ptr<LAMMPS> gas_pruned(int prune, const std::string &shape, int n,
-                                          const std::string &fix)
+// every pair the lists must hold, by brute force over owned and ghost atoms: the half list
+// (LAMMPS' half rule) and the gather rows, for hl = growth x h (h before the run's setup)
+static void count_pairs(const std::unique_ptr<LAMMPS> &lmp, const std::map<int, double> &h,
+                        double growth, double &half, double &full)
 {
-  auto lmp = open_lammps();
-  gas(lmp, shape, n, std::string(PAIR) + (prune ? " prune yes" : " prune no"), fix, 1.0, 0.04);
-  return lmp;
+  auto *atom = lmp->atom;
+  const double R = 2.0, skin = lmp->neighbor->skin;
+  const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
+  std::vector<double> hl(nall);
+  for (int i = 0; i < nall; i++) hl[i] = growth * h.at(static_cast<int>(atom->tag[i]));
+  const SPHAstro::HalfFromFull rule{nlocal, lmp->force->newton_pair != 0, false, 0.01};
+  half = full = 0.0;
+  for (int i = 0; i < nlocal; i++)
+    for (int j = 0; j < nall; j++) {
+      if (j == i) continue;
+      double r2 = 0.0;
+      for (int d = 0; d < 3; d++) r2 += std::pow(atom->x[i][d] - atom->x[j][d], 2);
+      const double reach = R * std::max(hl[i], hl[j]) + skin;
+      if (r2 >= reach * reach) continue;
+      half += rule.keeps(atom->x, i, j);
+      full += r2 < std::pow(R * hl[i] + skin, 2);
+    }
+}
+
+// the lists hold exactly the pairs with r < R max(hl_i, hl_j) + skin (half) and r < R hl_i +
+// skin (gather rows): a periodic box (ghosts are periodic images) with h spread by a factor 3,
+// newton on and off; fixed h (hl = h), dh/dt (hl = 1.1 h) and the h iteration (full rows too)
+TEST(NeighbourSearch, ListsHoldExactlyThePairsInsideTheReach)
+{
+  for (const std::string newton : {"on", "off"})
+    for (const std::string hfix :
+         {"", "fix hvar all sph/astro/h dhdt", "fix hvar all sph/astro/h iterate"}) {
+      auto lmp = open_lammps();
+      commands(lmp, {"newton " + newton});
+      gas(lmp, "box", 4, PAIR, "sph/astro courant 0.3", 1.0, 0.04);
+      commands(lmp,
+               {"variable hr atom 0.5*" + num(1.2 * std::cbrt(0.25)) + "*(1.0+random(0,2,4242))",
+                "set group all d_h v_hr"});
+      if (!hfix.empty()) commands(lmp, {hfix});
+      if (hfix.find("iterate") != std::string::npos)
+        commands(lmp, {"run 1"});    // h converged: the setup below keeps it within 1.05
+      const auto h = h_by_tag(lmp);
+      const LAMMPS_NS::bigint step_builds = lmp->force->pair ? search_statistics(lmp).step_builds
+                                                             : 0;
+      commands(lmp, {"run 0"});
+      const auto &search = search_statistics(lmp);
+      double half, full;
+      count_pairs(lmp, h, hfix.empty() ? 1.0 : 1.1, half, full);
+      const double atoms = lmp->atom->nlocal;
+      const std::string what = "newton " + newton + ", " + (hfix.empty() ? "fixed h" : hfix);
+      printf("%s: %d ghosts; half list %.0f entries (brute force %.0f), full %.0f (%.0f)\n",
+             what.c_str(), lmp->atom->nghost, search.half_entries * atoms, half,
+             search.full_entries * atoms, full);
+      EXPECT_EQ(search.step_builds, step_builds) << what;
+      EXPECT_GT(half, 10.0 * atoms) << what;
+      EXPECT_EQ(std::round(search.half_entries * atoms), half) << what;
+      if (hfix.find("iterate") != std::string::npos)
+        EXPECT_EQ(std::round(search.full_entries * atoms), full) << what;
+      else
+        EXPECT_EQ(search.full_entries, 0.0) << what;
+    }
 }
 
 // LAMMPS' half-from-full rule, npair_halffull.cpp (newton on, orthogonal box) line by line:
-// the reference for the branch-free form the prune scan uses (SPHAstro::HalfFromFull::keeps)
+// the reference for the branch-free form the lists use (SPHAstro::HalfFromFull::keeps)
 static bool lammps_halffull_keeps(double **x, int nlocal, bool newton, int i, int j)
 {
   if (!newton) return j > i;
@@ -255,10 +269,10 @@ static bool lammps_halffull_keeps(double **x, int nlocal, bool newton, int i, in
   return true;
 }
 
-// the rule of the prune scan decides every pair as LAMMPS' does: owned and ghost atoms, newton
+// the half rule of the package's lists decides every pair as LAMMPS' does: owned and ghost atoms, newton
 // on and off, coordinates on a coarse grid so that equal z, equal z and y, and equal z, y and
 // x all occur
-TEST(PrunedLists, BranchFreeHalfRuleIsLAMMPSRule)
+TEST(NeighbourSearch, BranchFreeHalfRuleIsLAMMPSRule)
 {
   const int nlocal = 40, nall = 160;
   std::vector<double> coords(3 * nall);
@@ -289,158 +303,110 @@ TEST(PrunedLists, BranchFreeHalfRuleIsLAMMPSRule)
   EXPECT_LT(kept, 3 * decided / 4);
 }
 
-// pruned lists (pair sph/astro prune, sph_astro_pruned_list.h): the same sums in the same order
-// as over LAMMPS' lists, so the same run bit for bit while the pruning adds no list build. A
-// periodic box of gas with 20 % pressure differences: h changes little; with fix sph/astro/h
-// the lists carry the h cap (margin 1.5), which the pruned lists leave out
-TEST(PrunedLists, GiveTheRunOfLAMMPSListsBitForBit)
+// rho_i = sum_j m W(r_ij, h_i) over every particle (self included; M4 kernel), brute force;
+// mean_h: W(r_ij, (h_i + h_j)/2)
+static std::map<int, double> density_by_brute_force(const std::unique_ptr<LAMMPS> &lmp,
+                                                    bool mean_h = false)
 {
-  for (const std::string hfix :
-       {"", "fix hvar all sph/astro/h dhdt", "fix hvar all sph/astro/h iterate"}) {
-    std::map<std::string, std::map<int, double>> result[2];
-    double lengths[2][3] = {};
-    for (int prune : {0, 1}) {
-      auto lmp = gas_pruned(prune, "box", 4, "sph/astro courant 0.3");
-      if (!hfix.empty()) commands(lmp, {hfix});
-      commands(lmp, {"run 60"});
-      for (const char *field : {"u", "h", "rho"}) result[prune][field] = per_atom(lmp, field, 0);
-      for (int c = 0; c < 3; c++) {
-        result[prune]["x" + std::to_string(c)] = per_atom(lmp, "x", c);
-        result[prune]["v" + std::to_string(c)] = per_atom(lmp, "v", c);
-      }
-      int dim;
-      const auto *pruned =
-          static_cast<double *>(lmp->force->pair->extract("pruned_list_lengths", dim));
-      ASSERT_NE(pruned, nullptr);
-      lengths[prune][0] = list_lengths(lmp, 0).first;
-      lengths[prune][1] = pruned[0];
-      lengths[prune][2] = pruned[1];
-      if (!hfix.empty()) {
-        auto *fix = lmp->modify->get_fix_by_id("hvar");
-        EXPECT_EQ(fix->compute_vector(6), 0.0) << hfix;    // no build added for the pruning
-        EXPECT_EQ(fix->compute_vector(7), 0.0) << hfix;    // no pass on LAMMPS' lists
-        EXPECT_EQ(fix->compute_vector(8), 0.0) << hfix;
-      }
+  using K = SPHAstro::Kernel<SPHAstro::KernelCubic, 3>;
+  auto *atom = lmp->atom;
+  const auto h = per_atom(lmp, "h");
+  std::map<int, double> rho;
+  for (int i = 0; i < atom->nlocal; i++) {
+    double sum = 0.0;
+    for (int j = 0; j < atom->nlocal; j++) {
+      double hi = h.at(static_cast<int>(atom->tag[i]));
+      if (mean_h) hi = 0.5 * (hi + h.at(static_cast<int>(atom->tag[j])));
+      double r2 = 0.0;
+      for (int d = 0; d < 3; d++) r2 += std::pow(atom->x[i][d] - atom->x[j][d], 2);
+      const double q = std::sqrt(r2) / hi;
+      if (q < K::radius) sum += 0.25 * K::sigma() * K::w(q) / (hi * hi * hi);
     }
-    // (iterate with prune yes: LAMMPS makes only the full list, which Pair::list then is)
-    printf("%s: LAMMPS list %.1f per atom, pruned half %.1f (full %.1f); without pruning %.1f\n",
-           hfix.empty() ? "fixed h" : hfix.c_str(), lengths[1][0], lengths[1][1], lengths[1][2],
-           lengths[0][1]);
-    EXPECT_EQ(lengths[0][1], 0.0);    // prune no: no pruned list
-    // fixed h without fix sph/astro/h: one h, no margin; the pruned list would keep every entry
-    // of LAMMPS' list, which is used as it is (nothing_to_prune)
-    if (hfix.empty())
-      EXPECT_EQ(lengths[1][1], 0.0);
-    else {
-      EXPECT_GT(lengths[1][1], 0.0) << hfix;
-      EXPECT_LT(lengths[1][1], 0.6 * lengths[1][0]) << hfix;
-    }
-    for (const auto &[field, values] : result[0]) {
-      ASSERT_EQ(values.size(), result[1][field].size());
-      for (const auto &[id, value] : values)
-        ASSERT_EQ(value, result[1][field].at(id)) << hfix << " " << field << " atom " << id;
-    }
+    rho[static_cast<int>(atom->tag[i])] = sum;
   }
+  return rho;
 }
 
-// the pruned lists take memory for the entries they keep (in LAMMPS' list pages), not for all
-// of LAMMPS' entries. With the h iteration and margin 1.5 LAMMPS' full list holds 249 entries
-// per atom, the pruned half and full lists 60 and 120: with the half-rule byte per LAMMPS
-// entry and the per-atom row arrays (ghosts included) they took 1.27 times LAMMPS' list (6 912
-// atoms). Sized for all of LAMMPS' entries, as until 2026-12-02, they took 2.8 times it, and a
-// Noh run of 1.07 million particles ran out of memory.
-TEST(PrunedLists, TakeMemoryForTheEntriesTheyKeep)
+static double worst_relative(const std::map<int, double> &a, const std::map<int, double> &b)
 {
-  double pair_bytes[2] = {}, lammps_bytes = 0.0;
-  for (int prune : {0, 1}) {
-    auto lmp = gas_pruned(prune, "box", 12, "sph/astro courant 0.3");
-    commands(lmp,
-             {"fix hvar all sph/astro/h iterate", "neigh_modify one 1000 page 10000", "run 0"});
-    pair_bytes[prune] = lmp->force->pair->memory_usage();
-    if (prune) {
-      const auto *list = lmp->force->pair->list;    // LAMMPS' full list (iterate + prune)
-      ASSERT_TRUE(list->ghost == 0 && list->inum == lmp->atom->nlocal);
-      double entries = 0.0;
-      for (int ii = 0; ii < list->inum; ii++) entries += list->numneigh[list->ilist[ii]];
-      lammps_bytes = sizeof(int) * entries;
-    }
-  }
-  const double extra = pair_bytes[1] - pair_bytes[0];
-  printf("pruned lists: %.0f kB against %.0f kB of LAMMPS' full list\n", extra / 1024.0,
-         lammps_bytes / 1024.0);
-  EXPECT_GT(extra, 0.0);
-  EXPECT_LT(extra, 1.5 * lammps_bytes);
-}
-
-// an expanding hot ball (h grows to 1.5 x its start): the setup's h iteration takes the
-// surface h past the pruned limit (those iterations use LAMMPS' lists); after that fix
-// sph/astro/h has LAMMPS build the lists in time, so no half-list pass falls back (a few
-// surface atoms' Newton or bisection trials overshoot the limit and finish on LAMMPS' list),
-// and the trajectory is that of prune no to round-off (the added list builds reorder the sums)
-TEST(PrunedLists, FollowGrowingSmoothingLengths)
-{
-  std::map<int, double> x[2];
-  double at_setup[2][2] = {}, after[2][3] = {}, natoms = 0.0;
-  for (int prune : {0, 1}) {
-    auto lmp = gas_pruned(prune, "ball", 6, "sph/astro dt fixed");
-    commands(lmp,
-             {"fix hvar all sph/astro/h iterate margin 4.0 tol 1e-10", "neighbor 0.1 bin",
-              "neigh_modify every 1 delay 0 check yes one 10000", "timestep 0.004", "run 0"});
-    auto *fix = lmp->modify->get_fix_by_id("hvar");
-    at_setup[prune][0] = fix->compute_vector(7);
-    at_setup[prune][1] = fix->compute_vector(8);
-    commands(lmp, {"run 150"});
-    for (int k = 0; k < 3; k++) after[prune][k] = fix->compute_vector(6 + k);
-    EXPECT_EQ(fix->compute_vector(3), 0.0);    // nobody at the h cap
-    x[prune] = per_atom(lmp, "x", 0);
-    natoms = static_cast<double>(lmp->atom->natoms);
-  }
-  printf("expanding ball: %.0f list builds forced by the pruned lists; fallbacks at the first "
-         "setup %.0f passes, %.0f atoms; after 150 steps %.0f, %.0f\n",
-         after[1][0], at_setup[1][0], at_setup[1][1], after[1][1], after[1][2]);
-  EXPECT_EQ(after[0][0] + after[0][1] + after[0][2], 0.0);    // prune no: nothing to count
-  EXPECT_GE(after[1][0], 1.0);
-  EXPECT_EQ(after[1][1], at_setup[1][0]);
-  // measured 238 of 150 x 459 atom-iterations (0.35 %)
-  EXPECT_LT(after[1][2] - at_setup[1][1], 0.005 * 150 * natoms);
   double worst = 0.0;
-  for (const auto &[id, value] : x[0]) worst = std::max(worst, std::fabs(x[1].at(id) - value));
+  for (const auto &[id, value] : a)
+    worst = std::max(worst, std::fabs(b.at(id) - value) / std::fabs(value));
+  return worst;
+}
+
+// an expanding hot ball (the largest h grows from 1.05 to 1.2, non-periodic box, one rank):
+// with margin 1.5 (cap 1.13) fix sph/astro/h widens the ghost cutoff within the run and has the
+// lists made anew as h grows; no particle is held at the cap, every density is the sum over all particles, and the
+// trajectory is that of margin 4 (nothing to widen) to the h tolerance
+static std::map<int, double> expanding_ball(const std::string &hfix, std::vector<double> &stats,
+                                            std::map<int, double> *rho_error = nullptr)
+{
+  auto lmp = open_lammps();
+  gas(lmp, "ball", 6, PAIR, "sph/astro dt fixed", 1.0, 0.04);
+  commands(lmp, {hfix + " tol 1e-10", "neighbor 0.1 bin", "timestep 0.004", "run 150"});
+  auto *fix = lmp->modify->get_fix_by_id("hvar");
+  stats.clear();
+  for (int k = 0; k < 8; k++) stats.push_back(fix->compute_vector(k));
+  if (rho_error) {
+    const auto rho = per_atom(lmp, "rho");
+    const auto brute = density_by_brute_force(lmp);
+    (*rho_error)[0] = worst_relative(brute, rho);
+  }
+  return per_atom(lmp, "x", 0);
+}
+
+TEST(NeighbourSearch, ListsAndGhostsFollowGrowingSmoothingLengths)
+{
+  std::vector<double> ref_stats, stats;
+  std::map<int, double> rho_error;
+  const auto ref = expanding_ball("fix hvar all sph/astro/h iterate margin 4.0", ref_stats);
+  const auto x = expanding_ball("fix hvar all sph/astro/h iterate margin 1.5", stats, &rho_error);
+  printf("expanding ball, margin 1.5: %.0f ghost widenings, %.0f reneighbourings for h, %.0f "
+         "list builds inside a step, %.0f wide rows; capped %.0f; worst density against brute "
+         "force %.2e\n",
+         stats[4], stats[5], stats[6], stats[7], stats[3], rho_error[0]);
+  EXPECT_EQ(ref_stats[4], 0.0);    // margin 4: no widening
+  EXPECT_GE(stats[4], 1.0);
+  EXPECT_GE(stats[5] + stats[6], 1.0);    // lists made anew for h: reneighbouring or in a step
+  EXPECT_EQ(stats[3], 0.0);
+  EXPECT_LT(rho_error[0], 1e-12);
+  ASSERT_EQ(x.size(), ref.size());
+  double worst = 0.0;
+  for (const auto &[id, value] : ref) worst = std::max(worst, std::fabs(x.at(id) - value));
   EXPECT_LT(worst, 1e-8);
 }
 
-// an h past the pruned limit: raised between runs with run pre no (dhdt), or by a larger hfact
-// at a setup (iterate). The passes use LAMMPS' lists (grad-h: the full list for the h
-// iteration, the half list made from it by LAMMPS' rule as decided at the build), and the
-// result is that of prune no bit for bit
-TEST(PrunedLists, FallBackToLAMMPSListsForAnHBeyondTheLimit)
+// an h past its lists' limit. Raised between runs (dhdt): the run's setup makes the lists for
+// it; rho_i = sum_j m W(r_ij, (h_i + h_j)/2) over all particles. Raised by a larger hfact at a
+// setup (iterate): the iteration takes rows from the tree, then the lists are made again inside
+// the step; rho_i = sum_j m W(r_ij, h_i) over all particles
+TEST(NeighbourSearch, AnHBeyondTheListLimitIsServedInTheStep)
 {
-  const double h_raised = 1.6 * 1.2 * std::cbrt(0.25);
-  for (const std::string mode : {"dhdt", "iterate"}) {
-    std::map<std::string, std::map<int, double>> result[2];
-    double fallbacks[2][2] = {};
-    for (int prune : {0, 1}) {
-      auto lmp = gas_pruned(prune, "box", 4, "sph/astro courant 0.3");
-      commands(lmp, {"fix hvar all sph/astro/h " + mode + " margin 3.0", "run 5"});
-      if (mode == "dhdt")    // with run pre no, h is raised after the lists were pruned
-        commands(lmp, {"set atom 1*40 d_h " + num(h_raised), "run 1 pre no"});
-      else    // the setup prunes for the old h, then iterates h to 1.5 (m/rho)^(1/3), not 1.2
-        commands(lmp,
-                 {"unfix hvar", "fix hvar all sph/astro/h iterate hfact 1.5 margin 3.0", "run 0"});
-      for (const char *field : {"rho", "h", "u"}) result[prune][field] = per_atom(lmp, field, 0);
-      result[prune]["fx"] = per_atom(lmp, "f", 0);
-      auto *fix = lmp->modify->get_fix_by_id("hvar");
-      fallbacks[prune][0] = fix->compute_vector(7);
-      fallbacks[prune][1] = fix->compute_vector(8);
-    }
-    printf("%s: %.0f passes and %.0f atoms' h iterations fell back to LAMMPS' lists\n",
-           mode.c_str(), fallbacks[1][0], fallbacks[1][1]);
-    EXPECT_EQ(fallbacks[0][0] + fallbacks[0][1], 0.0);
-    EXPECT_GE(fallbacks[1][0], 1.0) << mode;
-    if (mode == "iterate") EXPECT_GE(fallbacks[1][1], 1.0);
-    for (const auto &[field, values] : result[0])
-      for (const auto &[id, value] : values)
-        ASSERT_EQ(value, result[1][field].at(id)) << mode << " " << field << " atom " << id;
+  {
+    auto lmp = open_lammps();
+    gas(lmp, "ball", 6, PAIR, "sph/astro courant 0.3", 1.0, 0.04);
+    commands(lmp,
+             {"fix hvar all sph/astro/h dhdt margin 3.0", "run 5",
+              "set atom 1*40 d_h " + num(1.6 * 1.2 * std::cbrt(0.25)), "run 0"});
+    const double rho_error =
+        worst_relative(density_by_brute_force(lmp, true), per_atom(lmp, "rho"));
+    printf("dhdt, h raised: worst density against brute force %.2e\n", rho_error);
+    EXPECT_LT(rho_error, 1e-12);
   }
+  auto lmp = open_lammps();
+  gas(lmp, "ball", 6, PAIR, "sph/astro courant 0.3", 1.0, 0.04);
+  commands(lmp,
+           {"fix hvar all sph/astro/h iterate margin 3.0", "run 5", "unfix hvar",
+            "fix hvar all sph/astro/h iterate hfact 1.5 margin 3.0", "run 0"});
+  auto *fix = lmp->modify->get_fix_by_id("hvar");
+  const double rho_error = worst_relative(density_by_brute_force(lmp), per_atom(lmp, "rho"));
+  printf("hfact 1.2 -> 1.5: %.0f list builds inside a step, %.0f wide rows; worst density "
+         "against brute force %.2e\n",
+         fix->compute_vector(6), fix->compute_vector(7), rho_error);
+  EXPECT_GE(fix->compute_vector(6), 1.0);
+  EXPECT_GE(fix->compute_vector(7), 1.0);
+  EXPECT_LT(rho_error, 1e-12);
 }
 
 TEST(FixSPHAstroH, DhdtFollowsTheDivergence)

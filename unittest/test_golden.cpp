@@ -282,10 +282,9 @@ const std::vector<System> &systems()
          neighbour2d(1.5),
          2});
     s.push_back({"quintic_polytropic",
-                 "quintic (M6) kernel, eos polytropic K 0.5 gamma 2, fixed h (hfact 1.0), "
-                 "prune no",
+                 "quintic (M6) kernel, eos polytropic K 0.5 gamma 2, fixed h (hfact 1.0)",
                  geometry3d(),
-                 "sph/astro kernel m6 eos polytropic 0.5 2.0 viscosity classic 1.0 2.0 prune no",
+                 "sph/astro kernel m6 eos polytropic 0.5 2.0 viscosity classic 1.0 2.0",
                  {"fix gas all sph/astro courant 0.3"},
                  state3d(1.0),
                  neighbour3d(1.0, 3.0)});

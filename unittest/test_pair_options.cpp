@@ -200,8 +200,7 @@ TEST_P(PairOption, RestartContinuesBitForBit)
 
 INSTANTIATE_TEST_SUITE_P(PairSPHAstro, PairOption,
                          ::testing::Values("", "density continuity", "symmetrise kernel",
-                                           "pressure geometric", "prune no",
-                                           "formulation pressure-energy",
+                                           "pressure geometric", "formulation pressure-energy",
                                            "density continuity symmetrise kernel pressure "
                                            "geometric"));
 
@@ -231,32 +230,6 @@ TEST(PairOptions, SettingsComeBackFromARestartFile)
     else
       EXPECT_NE(message.find("pair_style sph/astro " + option + " " + expected), std::string::npos)
           << option << ": " << message;
-  }
-  std::remove(restart.c_str());
-}
-
-TEST(PairOptions, PruneNoComesBackFromARestartFile)
-{
-  const std::string restart = "test_pair_options_prune.restart";
-  for (const std::string option : {"prune no", "prune yes"}) {
-    {
-      auto lmp = open_lammps();
-      // dhdt: the lists carry the h cap (margin), so there is something to prune
-      gas(lmp, "box", 2, GAS + " " + option, "sph/astro");
-      commands(lmp, {"fix hvar all sph/astro/h dhdt", "run 2", "write_restart " + restart});
-    }
-    auto lmp = open_lammps();
-    commands(lmp,
-             {"read_restart " + restart, "fix gas all sph/astro", "fix hvar all sph/astro/h dhdt",
-              "run 0"});
-    int dim;
-    const auto *lengths =
-        static_cast<double *>(lmp->force->pair->extract("pruned_list_lengths", dim));
-    ASSERT_NE(lengths, nullptr);
-    if (option == "prune no")
-      EXPECT_EQ(lengths[0], 0.0);
-    else
-      EXPECT_GT(lengths[0], 0.0);
   }
   std::remove(restart.c_str());
 }
@@ -556,13 +529,12 @@ TEST_F(BadOptionInput, KeywordValuesNameTheStyleTheValueAndTheChoices)
   expect_error("pair_style sph/astro symmetrize kernel",
                "unknown keyword 'symmetrize'; allowed: kernel, eos, viscosity, balsara, "
                "reconstruct, conductivity, conduction, epsilon, density, symmetrise, pressure, "
-               "formulation, prune");
-  expect_error("pair_style sph/astro prune", "Illegal pair_style sph/astro prune");
+               "formulation");
+  expect_error("pair_style sph/astro prune yes", "unknown keyword 'prune'");
   expect_error("pair_style sph/astro formulation entropy-energy",
                "pair_style sph/astro: unknown formulation 'entropy-energy'; allowed: "
                "density-energy, pressure-energy");
   expect_error("pair_style sph/astro formulation", "Illegal pair_style sph/astro formulation");
-  expect_error("pair_style sph/astro prune maybe", "Expected boolean parameter instead of 'maybe'");
   expect_error("pair_style sph/astro reconstruct yes gate 100",
                "reconstruct gate 100 must be an integer in 0-64");
   expect_error("pair_style sph/astro reconstruct yes trigger -1",

@@ -303,7 +303,7 @@ static double contact_pressure_spread(double alpha_u)
             "set type 2 d_h 1.51",
             "set type 1 d_u 1.0",
             "set type 2 d_u 4.0",
-            "neighbor 0.3 multi",
+            "neighbor 0.3 bin",
             "compute sph all sph/astro/atom pressure",
             "compute pmax all reduce max c_sph",
             "compute pmin all reduce min c_sph",

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Evrard collapse (examples/evrard/in.evrard): energies from the LAMMPS log.
 
-Reads the thermo rows of every run in the log (sph/astro/run repeats runs after neighbour-list
-rebuilds; a row repeated at a run boundary is kept once), columns
+Reads the thermo rows of every run in the log (a row repeated at a run boundary is kept
+once), columns
   Step Time Dt c_sum[8] c_sum[9] c_sum[10] c_sum[11] c_sum[12] ...
      = kinetic K, thermal U, potential W, total E, (E - E0)/|E0|,
 and prints one line per figure:

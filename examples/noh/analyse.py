@@ -184,17 +184,18 @@ def noh_measures(frame, t, gamma=5.0 / 3.0, u0=1e-6, radius=1.0, nbins=40,
 def parse_log(path):
     """Energy error, capped particles and run size from the scene's LAMMPS log; ``capped_steps``:
     the largest number of particles at the h cap over all steps (in.noh's final print of its
-    fix vector of f_hvar[4]; nan if absent), ``rebuilds``: runs ended for a list rebuild."""
+    fix vector of f_hvar[4]; nan if absent), ``widenings``: ghost-cutoff widenings of fix
+    sph/astro/h (its log lines)."""
     out = parse_sph_log(path, loops="sum")
     out["capped_steps"] = math.nan
-    out["rebuilds"] = 0
+    out["widenings"] = 0
     with open(path, encoding="utf-8", errors="replace") as f:
         for line in f:
             m = re.search(r"largest over all steps (\S+)", line)
             if m and not line.startswith("print"):
                 out["capped_steps"] = float(m.group(1))
-            if line.startswith("sph/astro/run: continuing"):
-                out["rebuilds"] += 1
+            if line.startswith("fix sph/astro/h: ghost cutoff widened"):
+                out["widenings"] += 1
     return out
 
 
@@ -297,8 +298,8 @@ def main(argv=None):
         print(f"particles at the h cap (final) = {log['capped']:g}, most at a thermo line = "
               f"{log['capped_max']:g}, most at any step = {log['capped_steps']:g}")
         print(f"run: {log['natoms']} particles, {log['steps']} steps in {log['runs']} "
-              f"runs ({log['rebuilds']} list rebuilds), loop time {log['loop_s']:.2f} s on "
-              f"{log['procs']} procs")
+              f"run(s) ({log['widenings']} ghost-cutoff widenings), loop time "
+              f"{log['loop_s']:.2f} s on {log['procs']} procs")
 
     if args.png:
         plot(d, t, args.png, args.gamma, args.u0, args.radius, args.nbins,

@@ -51,7 +51,7 @@ from sphastro.runs import check_bounds, parse_sph_log  # noqa: E402
 
 def parse_log(path):
     """Energy error, capped particles and run size from the scene's LAMMPS log."""
-    return parse_sph_log(path, loops="sum")    # run 0, then sph/astro/run segments
+    return parse_sph_log(path, loops="sum")    # the run 0 adds no steps
 
 
 def main(argv=None):

@@ -6,9 +6,9 @@ The same scene as examples/toystar/in.toystar, written as LAMMPS commands issued
 Python: lambda comes from the Python reference (tools/sphastro/toystar.py) instead of the
 input's own formula, and the state is read straight from LAMMPS' memory (numpy views of x, v
 and the per-atom SPH state d_rho) after the damped relaxation and after the undamped
-continuation. Neighbour lists follow h as in the input (fix sph/astro/h rebuild + collections
-with neighbor multi, sph/astro/run); the particles at the h cap and the kinetic energy of the
-continuation are sampled at every step (fix vector).
+continuation. As in the input, fix sph/astro/h widens the ghost cutoff within a run when the
+largest h grows; the particles at the h cap and the kinetic energy of the continuation are
+sampled at every step (fix vector).
 
     source build/env.sh
     /usr/bin/python3 examples/toystar/toystar_python.py [--n 8] [--npoly 1] [--png toystar_py.png]
@@ -73,7 +73,7 @@ def main():
     lam = toystar.toystar_lambda(M, R, k, n)
     gamma = 1.0 + 1.0 / n
     a = 2.0 * R / args.n                    # fcc lattice constant
-    margin, skin = 1.3, 0.2                 # as in.toystar: h cap margin, skin in units of h0
+    margin, skin = 1.3, 0.2                 # as in.toystar: ghost cutoff margin, skin in units of h0
 
     os.makedirs(args.outdir, exist_ok=True)
     lmp = lammps(cmdargs=["-log", os.path.join(args.outdir, "log.toystar_python"), "-screen",
@@ -102,8 +102,7 @@ mass            1 {mass!r}
 pair_style      sph/astro kernel m4 eos polytropic {k!r} {gamma!r} viscosity classic 1.0 2.0
 pair_coeff      * *
 fix             gas all sph/astro courant 0.3 tend {args.trelax!r}
-fix             hvar all sph/astro/h iterate hfact {args.hfact} margin {margin} rebuild 0.9 &
-                collections auto
+fix             hvar all sph/astro/h iterate hfact {args.hfact} margin {margin}
 set             group all d_h {1.3 * h0!r}
 # -lambda r and -nu v per unit mass; potential energy 1/2 lambda m r^2
 variable        fx atom -{lam!r}*mass*x
@@ -113,7 +112,7 @@ variable        epot atom 0.5*{lam!r}*mass*(x*x+y*y+z*z)
 fix             grav all addforce v_fx v_fy v_fz energy v_epot
 fix_modify      grav energy yes
 fix             damp all viscous {args.nu * mass!r}
-neighbor        {skin * h0!r} multi
+neighbor        {skin * h0!r} bin
 neigh_modify    every 1 delay 0 check yes
 fix             capped all vector 1 f_hvar[4]
 compute         sum all sph/astro/global
@@ -128,7 +127,7 @@ timestep        1e-4
         lmp.command(f"variable vmax equal max(f_{fix})")
         return float(lmp.extract_variable("vmax"))
 
-    lmp.command("sph/astro/run 10000000")      # to trelax (tend), repeated after list rebuilds
+    lmp.command("run 10000000")                # to trelax (fix sph/astro tend stops the run)
     relaxed, t_relaxed = state(lmp)
     eth = global_value(lmp, "sum", 9)
     ekin_relaxed = global_value(lmp, "sum", 8)
@@ -145,7 +144,7 @@ fix             capped all vector 1 f_hvar[4]
 thermo_style    custom step time dt c_free[8] c_free[11] c_free[12] f_hvar[4] f_hvar[5] cpu
 thermo_modify   norm no
 """)
-    lmp.command("sph/astro/run 10000000")
+    lmp.command("run 10000000")
     ekin_free = vector_max("ekin")
     capped_free = vector_max("capped")
     free, t_free = state(lmp)

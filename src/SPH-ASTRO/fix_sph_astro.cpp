@@ -35,8 +35,6 @@
 #include "force.h"
 #include "memory.h"
 #include "modify.h"
-#include "neigh_list.h"
-#include "neigh_request.h"
 #include "neighbor.h"
 #include "output.h"
 #include "sph_astro_conduction.h"
@@ -85,7 +83,6 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
   xsph_eps_ = 0.0;
   xsph_ = nullptr;
   xsph_nmax_ = 0;
-  xsph_list_ = nullptr;
   last_dt_cv_ = 0.0;
   last_dt_force_ = 0.0;
   last_dt_energy_ = 0.0;
@@ -245,7 +242,6 @@ void FixSPHAstro::init()
                "fix sph/astro: pair_style sph/astro density continuity needs the per-atom state "
                "fix {}; it is missing (define pair_style and fix sph/astro again)",
                CONTINUITY_FIX_ID);
-  if (xsph_eps_ > 0.0) neighbor->add_request(this, NeighConst::REQ_FULL);
   if (modify->get_fix_by_style("^sph/astro$").size() > 1)
     error->all(FLERR,
                "fix sph/astro: only one instance is allowed (it sets the global timestep); use "
@@ -648,13 +644,8 @@ void FixSPHAstro::restart(char *buf)
    the last force evaluation (ghosts have them from pair sph/astro's communication). v itself
    is unchanged; since x no longer moves with v, the total energy is conserved only
    approximately (doc/fix_sph_astro.rst). Computed after every force evaluation (post_force,
-   and setup for the first drift) over a full list requested only when xsph > 0.
+   and setup for the first drift) over the neighbour lists of pair sph/astro.
 ------------------------------------------------------------------------- */
-
-void FixSPHAstro::init_list(int /*id*/, NeighList *ptr)
-{
-  xsph_list_ = ptr;
-}
 
 void FixSPHAstro::post_force(int /*vflag*/)
 {
@@ -669,14 +660,5 @@ void FixSPHAstro::xsph_correction()
     memory->create(xsph_, xsph_nmax_, 3, "fix_sph_astro:xsph");
     array_atom = xsph_;
   }
-  // atoms outside the list (none for a list of all atoms) keep a zero correction
-  for (int i = 0; i < atom->nlocal; i++) xsph_[i][0] = xsph_[i][1] = xsph_[i][2] = 0.0;
-  PassContext ctx{};
-  ctx.kernel = pair_->options().kernel;
-  ctx.dim = domain->dimension;
-  ctx.p = {atom->x,      atom->dvector[state_->h],   atom->type, atom->rmass, atom->mass,
-           atom->nlocal, atom->nlocal + atom->nghost};
-  ctx.rho = pair_->eval_density();    // that of the force evaluation (ghosts too)
-  ctx.vest = atom->darray[state_->vest];
-  xsph_pass(ctx, view_of(xsph_list_), xsph_eps_, xsph_);
+  pair_->xsph_correction(xsph_eps_, xsph_);
 }

@@ -40,7 +40,6 @@ class FixSPHAstro : public Fix {
   void initial_integrate(int) override;
   void final_integrate() override;
   void post_force(int) override;
-  void init_list(int, class NeighList *) override;
   void end_of_step() override;
   void post_run() override;
   double compute_scalar() override;
@@ -97,7 +96,6 @@ class FixSPHAstro : public Fix {
   double xsph_eps_;    // 0: off (no list, no pass)
   double **xsph_;      // per-atom correction (owned atoms), also the fix's per-atom output
   int xsph_nmax_;
-  class NeighList *xsph_list_;
   void xsph_correction();
 
   double last_dt_cv_, last_dt_force_, last_dt_energy_, last_dt_cond_;

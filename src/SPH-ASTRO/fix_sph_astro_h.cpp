@@ -7,41 +7,32 @@
 
 // Variable smoothing length
 
-// fix ID group sph/astro/h dhdt [margin M] [rebuild F] [collections auto|N|no]
-// fix ID group sph/astro/h iterate [hfact F] [tol T] [maxiter N] [margin M] [rebuild F]
-//                                   [collections auto|N|no]
+// fix ID group sph/astro/h dhdt [margin M] [hmax H]
+// fix ID group sph/astro/h iterate [hfact F] [tol T] [maxiter N] [margin M] [hmax H]
 //
 // In both modes h is advanced with the drift of fix sph/astro, h <- h exp(dt div v / d), the
 // integral of dh/dt = (h/d) div v at fixed div v (Benz 1990; Monaghan 1992). In dhdt mode that is the
 // evolution; in iterate mode it is the starting guess of the Newton-Raphson iteration that
-// pair sph/astro runs in its density pass. Smoothing lengths are capped at margin x the
-// largest h of their type when the run began (the neighbour list cutoffs are set for it).
+// pair sph/astro runs in its density pass.
 //
-// rebuild F: LAMMPS sets neighbour-list cutoffs when a run starts. At the end of a step in
-// which some particle's h exceeds F x the cap of its type, or the largest h of a type fell
-// below cap / margin^2 (lists far wider than needed), the run ends (like fix halt) so that
-// the next run sets the cutoffs for the current h; the command sph/astro/run starts that
-// next run by itself. No particle then reaches the cap as long as h grows by less than a
-// factor 1/F per step.
-//
-// collections: per-particle neighbour cutoffs with neighbor multi. At every run start the fix
-// divides the cutoffs kernel_radius x [1.2 h_min, cap] into N intervals ("auto": a factor
-// sqrt(2) apart) and hands them to LAMMPS as neigh_modify collection/interval would; pair sph/astro
-// puts each atom in the collection covering kernel_radius x 1.2 h_i (atom2cut), so small-h
-// particles search small stencils. When an h grows to within 1/1.1 of its collection's
-// cutoff the fix makes LAMMPS rebuild the lists at the next step (atoms change collection).
-//
-// Pruned lists (pair sph/astro prune yes, the default): when an h comes within 1/1.05 of the
-// largest h its pruned neighbour list serves (1.1 x its h at the list build), the fix makes
-// LAMMPS rebuild the lists at the next step, so the pruned lists are made anew before an h
-// outgrows them.
+// Neighbour search (pair sph/astro, sph_astro_neighbour_lists.h): smoothing lengths are capped
+// at h_cap = (ghost cutoff - skin) / kernel radius. A run starts with the ghost cutoff set for
+// h_cap = margin x the largest h (at most hmax). At the end of a step in which LIST_REBUILD x
+// the largest h exceeds h_cap, the fix widens LAMMPS' ghost cutoff (as comm_modify cutoff
+// would) to kernel radius x h_new + skin at the next step, which it makes a reneighbouring
+// step: h_new = max(margin, 1.2) x the largest h, at most hmax and at most what half the
+// shortest periodic box side allows. The user's comm_modify cutoff comes back at the end of
+// the run. When an
+// h comes within 1/LIST_REBUILD of the largest h its neighbour lists serve, the fix likewise
+// has LAMMPS reneighbour at the next step, so that the lists are made anew before any h
+// outgrows them (pair sph/astro would otherwise make them again inside the step).
 //
 // Global vector: 1 mean Newton iterations per particle of the latest density pass,
 // 2 largest number of iterations, 3 particles that did not converge since the run began,
-// 4 particles held at the h cap in the latest pass, 5 runs ended for a list rebuild,
-// 6 list builds forced because an h outgrew its collection, 7 list builds forced because an
-// h came near the limit of its pruned list, 8 pair passes (summed over ranks) and 9 atoms'
-// h iterations that went past the pruned lists' limit and used LAMMPS' full lists instead.
+// 4 particles held at the h cap in the latest pass, 5 ghost-cutoff widenings, 6 reneighbourings
+// asked for because an h neared its lists' limit, 7 list builds inside a step because an h
+// outgrew its lists and 8 h iterations that went past their list's limit (summed over ranks;
+// 5-8 since the fix was defined).
 
 #include "fix_sph_astro_h.h"
 
@@ -53,13 +44,12 @@
 #include "group.h"
 #include "memory.h"
 #include "modify.h"
-#include "neigh_request.h"
 #include "neighbor.h"
 #include "pair_sph_astro.h"
+#include "sph_astro_neighbour_lists.h"
 #include "sph_astro_options.h"
 #include "sph_astro_passes.h"
 #include "sph_astro_state.h"
-#include "timer.h"
 #include "update.h"
 #include "utils.h"
 
@@ -78,17 +68,16 @@ FixSPHAstroH::FixSPHAstroH(LAMMPS *lmp, int narg, char **arg) :
   tolerance_ = 1e-4;
   max_iterations_ = 30;
   margin_ = 1.5;
-  rebuild_ = 0.0;
-  rebuild_requested_ = false;
-  rebuilds_ = 0;
-  collections_ = 0;
-  collection_rebuilds_ = 0;
-  prune_rebuilds_ = 0;
+  h_max_ = INFINITY;
+  user_cutghost_ = 0.0;
+  pending_cutoff_ = 0.0;
+  ghost_widenings_ = 0;
+  list_reneighbours_ = 0;
   pair_ = nullptr;
   iterate_flag_ = 1;
 
   vector_flag = 1;
-  size_vector = 9;
+  size_vector = 8;
   global_freq = 1;
   extvector = 0;
 
@@ -105,26 +94,12 @@ FixSPHAstroH::FixSPHAstroH(LAMMPS *lmp, int narg, char **arg) :
     const std::string key = arg[iarg];
     if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sph/astro/h " + key, error);
     const char *val = arg[iarg + 1];
-    if (key == "margin") {
+    if (key == "hmax") {
+      h_max_ = utils::numeric(FLERR, val, false, lmp);
+      if (!(h_max_ > 0.0)) error->all(FLERR, "fix sph/astro/h: hmax = {} must be > 0", val);
+    } else if (key == "margin") {
       margin_ = utils::numeric(FLERR, val, false, lmp);
       if (!(margin_ >= 1.0)) error->all(FLERR, "fix sph/astro/h: margin = {} must be >= 1", val);
-    } else if (key == "rebuild") {
-      rebuild_ = utils::numeric(FLERR, val, false, lmp);
-      if (rebuild_ != 0.0 && !(rebuild_ > 0.0 && rebuild_ <= 1.0))
-        error->all(FLERR, "fix sph/astro/h: rebuild = {} must be in (1/margin, 1], or 0 (off)",
-                   val);
-    } else if (key == "collections") {
-      if (strcmp(val, "auto") == 0)
-        collections_ = -1;
-      else if (strcmp(val, "no") == 0)
-        collections_ = 0;
-      else {
-        collections_ = utils::inumeric(FLERR, val, false, lmp);
-        if (collections_ < 1 || collections_ > 16)
-          error->all(FLERR,
-                     "fix sph/astro/h: collections = {} must be auto, no or a number in 1..16",
-                     val);
-      }
     } else if (mode_ == Mode::ITERATE && key == "hfact") {
       hfact_ = utils::numeric(FLERR, val, false, lmp);
       if (!(hfact_ > 0.0)) error->all(FLERR, "fix sph/astro/h: hfact = {} must be > 0", val);
@@ -136,18 +111,15 @@ FixSPHAstroH::FixSPHAstroH(LAMMPS *lmp, int narg, char **arg) :
       max_iterations_ = utils::inumeric(FLERR, val, false, lmp);
       if (max_iterations_ < 1) error->all(FLERR, "fix sph/astro/h: maxiter = {} must be >= 1", val);
     } else
-      error->all(FLERR, "fix sph/astro/h {}: unknown keyword '{}'; allowed: {}", arg[3], key,
-                 mode_ == Mode::ITERATE ? "hfact, tol, maxiter, margin, rebuild, collections"
-                                        : "margin, rebuild, collections");
+      error->all(FLERR, "fix sph/astro/h {}: unknown keyword '{}'; allowed: {}{}", arg[3], key,
+                 mode_ == Mode::ITERATE ? "hfact, tol, maxiter, margin, hmax" : "margin, hmax",
+                 key == "rebuild" || key == "collections"
+                     ? " (the package's neighbour search follows h within a run: no list "
+                       "rebuild settings are needed)"
+                     : "");
     iarg += 2;
   }
-  // a new run's cap is margin x the largest h: the trigger must lie above it
-  if (rebuild_ > 0.0 && !(rebuild_ * margin_ > 1.0))
-    error->all(FLERR,
-               "fix sph/astro/h: rebuild = {} must exceed 1/margin = {} (a new run starts with h "
-               "at 1/margin of the cap)",
-               rebuild_, 1.0 / margin_);
-  // collections, and the pruned lists of pair sph/astro, ask for list builds
+  // reneighbouring when h outgrows the lists or the ghost cutoff
   force_reneighbor = 1;
   next_reneighbor = -1;
 }
@@ -163,6 +135,7 @@ void *FixSPHAstroH::extract(const char *name, int &dim)
   if (strcmp(name, "hfact") == 0) return &hfact_;
   if (strcmp(name, "tolerance") == 0) return &tolerance_;
   if (strcmp(name, "margin") == 0) return &margin_;
+  if (strcmp(name, "hmax") == 0) return &h_max_;
   dim = 0;
   iterate_flag_ = mode_ == Mode::ITERATE ? 1 : 0;
   if (strcmp(name, "iterate") == 0) return &iterate_flag_;
@@ -172,9 +145,9 @@ void *FixSPHAstroH::extract(const char *name, int &dim)
 
 int FixSPHAstroH::setmask()
 {
-  // fix sph/astro calls advance_h() in its drift; end_of_step checks h against the caps,
-  // the collections' cutoffs and the limits of the pruned lists
-  return END_OF_STEP | POST_RUN;
+  // fix sph/astro calls advance_h() in its drift; end_of_step checks h against the lists'
+  // limits and the ghost cutoff, which pre_exchange widens
+  return END_OF_STEP | PRE_EXCHANGE | POST_RUN;
 }
 
 void FixSPHAstroH::init()
@@ -195,163 +168,83 @@ void FixSPHAstroH::init()
       error->warning(FLERR, "fix sph/astro/h dhdt: particles outside group {} keep their h",
                      group->names[igroup]);
   }
-  rebuild_requested_ = false;
-  if (collections_) setup_collections();
+  user_cutghost_ = comm->cutghostuser;
+  pending_cutoff_ = 0.0;
 }
 
-// geometric cutoff intervals from kernel_radius x 1.2 h_min to kernel_radius x the largest
-// cap, handed to Neighbor as neigh_modify collection/interval does (read by neighbor->init(),
-// which LAMMPS calls after the fixes' init)
-void FixSPHAstroH::setup_collections()
-{
-  if (neighbor->style != Neighbor::MULTI)
-    error->all(FLERR,
-               "fix sph/astro/h collections needs neighbor style multi (e.g. neighbor 0.1 "
-               "multi), got another neighbor style");
-  // the collections size the neighbour lists of every pair style by h: other pair styles may
-  // only join (hybrid/overlay) if they use no list, as sph/astro/gravity without kspace
-  for (const auto *request : neighbor->get_pair_requests())
-    if (request->get_requestor() != (void *) pair_)
-      error->all(FLERR,
-                 "fix sph/astro/h collections: pair_style sph/astro must be the only pair style "
-                 "with a neighbour list (the collections size the lists of every pair style by "
-                 "h); sph/astro/gravity qualifies only without kspace (direct summation)");
-  const double *h = atom->dvector[state_->h];
-  double hmin_local = INFINITY, hmin;
-  for (int i = 0; i < atom->nlocal; i++) hmin_local = MIN(hmin_local, h[i]);
-  MPI_Allreduce(&hmin_local, &hmin, 1, MPI_DOUBLE, MPI_MIN, world);
-  double capmax = 0.0;
-  for (int t = 1; t <= atom->ntypes; t++) capmax = MAX(capmax, pair_->h_cap(t));
-  const double R = pair_->options().kernel_radius();
-  const double cmax = R * capmax;
-  double cmin = std::isfinite(hmin) ? MIN(R * hmin * PairSPHAstro::COLLECTION_GROWTH, cmax) : cmax;
-  // LAMMPS bins every collection over the subdomain and its ghost shell with bins of half its
-  // cutoff: keep the smallest collection at most ~200 bins across (8e6 bins), else a wide
-  // range of h in a large box costs gigabytes of bins
-  double extent = 0.0;
-  for (int d = 0; d < domain->dimension; d++)
-    extent = MAX(extent, domain->subhi[d] - domain->sublo[d] + 2.0 * (cmax + neighbor->skin));
-  double extent_all;
-  MPI_Allreduce(&extent, &extent_all, 1, MPI_DOUBLE, MPI_MAX, world);
-  const double floor_cut = 2.0 * extent_all / 200.0;
-  if (cmin < floor_cut) cmin = MIN(floor_cut, cmax);
-  int n = collections_;
-  // auto: cutoffs a factor sqrt(2) apart, so that an atom's stencil reaches at most
-  // 1.2 sqrt(2) = 1.7 times its kernel support
-  if (n < 0) n = 1 + static_cast<int>(std::ceil(2.0 * std::log2(cmax / cmin) - 1e-9));
-  n = MAX(1, MIN(n, 16));
-  if (cmax <= cmin) n = 1;
-  neighbor->ncollections = n;
-  memory->grow(neighbor->collection2cut, n, "neigh:collection2cut");
-  for (int k = 0; k < n; k++)
-    neighbor->collection2cut[k] = k == n - 1 ? cmax : cmin * std::pow(cmax / cmin, k / (n - 1.0));
-  neighbor->interval_collection_flag = 1;
-  neighbor->custom_collection_flag = 1;
-  comm->ncollections_cutoff = 0;
-  if (comm->me == 0) {
-    std::string cuts;
-    for (int k = 0; k < n; k++) cuts += fmt::format(" {:.4g}", neighbor->collection2cut[k]);
-    utils::logmesg(lmp, "fix sph/astro/h: {} neighbour collections, cutoffs{}\n", n, cuts);
-  }
-}
-
-// the setup lists allow every h up to its type's cap (PairSPHAstro::atom2cut): tight ones
-// are built at step 1. With rebuild, particles held at the cap by the setup's h iteration
-// (h far from its start value) end the run before its first step.
+// the setup's h iteration may take h near or past its lists' limit or the ghost cutoff
 void FixSPHAstroH::setup(int /*vflag*/)
 {
-  if (collections_) next_reneighbor = update->ntimestep + 1;
-  // the setup's h iteration may take h near or past the pruned lists' limit
-  if (outgrown_lists() & 2) {
-    next_reneighbor = update->ntimestep + 1;
-    prune_rebuilds_++;
-  }
-  if (rebuild_ <= 0.0 || mode_ != Mode::ITERATE) return;
-  int capped;
-  MPI_Allreduce(&pair_->h_statistics().capped, &capped, 1, MPI_INT, MPI_SUM, world);
-  if (capped == 0) return;
-  rebuild_requested_ = true;
-  rebuilds_++;
-  timer->force_timeout();
-  if (comm->me == 0)
-    utils::logmesg(lmp,
-                   "fix sph/astro/h: {} particles need h beyond the neighbour-list cap at the "
-                   "setup of step {}: the run ends before its first step so that the lists are "
-                   "rebuilt\n",
-                   capped, update->ntimestep);
-}
-
-// bit 1: an h within 1/1.1 of its collection's cutoff; bit 2: an h within 1/PRUNE_REBUILD of
-// its pruned list's limit, where that limit is below the h cap (a limit held at the cap does
-// not grow with a new list); 0 when neither is in use (collective)
-int FixSPHAstroH::outgrown_lists() const
-{
-  if (!collections_ && !pair_->pruning()) return 0;
-  const double *h = atom->dvector[state_->h];
-  const double grow = PairSPHAstro::PRUNE_REBUILD;
-  int outgrown_local = 0, outgrown;
-  for (int i = 0; i < atom->nlocal; i++) {
-    if (collections_ && 1.1 * h[i] > pair_->h_limit(i)) outgrown_local |= 1;
-    const double limit = pair_->prune_limit(i);
-    if (grow * h[i] > limit && limit < pair_->h_cap(atom->type[i])) outgrown_local |= 2;
-  }
-  MPI_Allreduce(&outgrown_local, &outgrown, 1, MPI_INT, MPI_BOR, world);
-  return outgrown;
+  check_limits();
 }
 
 void FixSPHAstroH::end_of_step()
 {
-  // rebuild the lists at the next step so that atoms change collection or get new pruned lists
-  const int outgrown = outgrown_lists();
-  if (outgrown) next_reneighbor = update->ntimestep + 1;
-  if (outgrown & 1)
-    collection_rebuilds_++;
-  else if (outgrown & 2)
-    prune_rebuilds_++;
-  if (rebuild_ <= 0.0 || rebuild_requested_) return;
-  const int ntypes = atom->ntypes;
-  const double *h = atom->dvector[state_->h];
-  const int *type = atom->type;
-  // largest h per type and largest h / cap with the atom that has it
-  std::vector<double> hmax_local(ntypes + 1, 0.0), hmax(ntypes + 1, 0.0);
-  struct {
-    double value;
-    int tag;
-  } worst_local = {0.0, 0}, worst;
-  for (int i = 0; i < atom->nlocal; i++) {
-    hmax_local[type[i]] = MAX(hmax_local[type[i]], h[i]);
-    const double ratio = h[i] / pair_->h_cap(type[i]);
-    if (ratio > worst_local.value) worst_local = {ratio, static_cast<int>(atom->tag[i])};
-  }
-  MPI_Allreduce(hmax_local.data(), hmax.data(), ntypes + 1, MPI_DOUBLE, MPI_MAX, world);
-  MPI_Allreduce(&worst_local, &worst, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
-  int shrink_type = 0;
-  for (int t = 1; t <= ntypes && margin_ > 1.0; t++)
-    if (hmax[t] > 0.0 && hmax[t] * margin_ * margin_ < pair_->h_cap(t)) shrink_type = t;
-  if (worst.value <= rebuild_ && !shrink_type) return;
+  check_limits();
+}
 
-  rebuild_requested_ = true;
-  rebuilds_++;
-  timer->force_timeout();
-  if (comm->me == 0) {
-    if (worst.value > rebuild_)
-      utils::logmesg(lmp,
-                     "fix sph/astro/h: h of atom {} reached {:.3g} of its neighbour-list cap at "
-                     "step {}: the run ends so that the lists are rebuilt for the current h\n",
-                     worst.tag, worst.value, update->ntimestep);
-    else
-      utils::logmesg(lmp,
-                     "fix sph/astro/h: the largest h of type {} fell to {:.3g} of its "
-                     "neighbour-list cap at step {}: the run ends so that the lists are rebuilt "
-                     "narrower\n",
-                     shrink_type, hmax[shrink_type] / pair_->h_cap(shrink_type), update->ntimestep);
+// reneighbour at the next step if an h came near its lists' limit, and widen the ghost
+// cutoff if the largest h came near h_cap (collective); an h that outgrew its lists on a step
+// that widens the ghosts gets its lists with the new ghosts
+void FixSPHAstroH::check_limits()
+{
+  const double *h = atom->dvector[state_->h];
+  const int *mask = atom->mask;
+  const double grow = PairSPHAstro::LIST_REBUILD;
+  const double cap = pair_->h_cap();
+  int outgrown_local = 0, outgrown;
+  double hmax_local = 0.0, hmax;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    hmax_local = MAX(hmax_local, h[i]);
+    const double limit = pair_->list_limit(i);
+    if (grow * h[i] > limit && limit < cap) outgrown_local = 1;
+  }
+  MPI_Allreduce(&outgrown_local, &outgrown, 1, MPI_INT, MPI_MAX, world);
+  MPI_Allreduce(&hmax_local, &hmax, 1, MPI_DOUBLE, MPI_MAX, world);
+  if (grow * hmax > cap && cap < h_max_) {
+    // the new cap: room to grow, at most hmax and at most what half the shortest periodic box
+    // side serves (a kernel wider than that sees a particle's own images)
+    const double R = pair_->kernel_radius(), skin = neighbor->skin;
+    double new_cap = MIN(MAX(margin_, WIDEN) * hmax, h_max_);
+    for (int d = 0; d < domain->dimension; d++)
+      if (domain->periodicity[d]) new_cap = MIN(new_cap, (0.5 * domain->prd[d] - skin) / R);
+    if (new_cap > grow * cap) {
+      pending_cutoff_ = R * new_cap + skin;
+      next_reneighbor = update->ntimestep + 1;
+    }
+  }
+  if (outgrown && next_reneighbor != update->ntimestep + 1) {
+    next_reneighbor = update->ntimestep + 1;
+    list_reneighbours_++;
   }
 }
 
+// on the reneighbouring step asked for: a wider ghost shell before LAMMPS exchanges atoms and
+// makes the ghosts (comm->setup(), as LAMMPS does itself when the box changes)
+void FixSPHAstroH::pre_exchange()
+{
+  if (pending_cutoff_ <= 0.0) return;
+  const double old_cutoff = MAX(comm->cutghostuser, neighbor->cutneighmax);
+  if (pending_cutoff_ > old_cutoff) {
+    comm->cutghostuser = pending_cutoff_;
+    comm->setup();
+    ghost_widenings_++;
+    if (comm->me == 0)
+      utils::logmesg(lmp,
+                     "fix sph/astro/h: ghost cutoff widened from {:.6g} to {:.6g} at step {} (h "
+                     "cap {:.6g})\n",
+                     old_cutoff, pending_cutoff_, update->ntimestep,
+                     (pending_cutoff_ - neighbor->skin) / pair_->kernel_radius());
+  }
+  pending_cutoff_ = 0.0;
+}
+
+// the next run sets its ghost cutoff from its h; the user's comm_modify cutoff comes back
 void FixSPHAstroH::post_run()
 {
-  // the stop for a rebuild ends this run only; later runs get the user's timeout back
-  if (rebuild_requested_) timer->reset_timeout();
+  comm->cutghostuser = user_cutghost_;
+  pending_cutoff_ = 0.0;
 }
 
 void FixSPHAstroH::advance_h(double dt)
@@ -364,7 +257,7 @@ void FixSPHAstroH::advance_h(double dt)
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     h[i] *= std::exp(dt_over_d * divv[i]);
-    h[i] = MIN(h[i], pair_->h_limit(i));
+    h[i] = MIN(h[i], pair_->h_cap());
   }
 }
 
@@ -381,11 +274,11 @@ double FixSPHAstroH::compute_vector(int n)
     MPI_Allreduce(&stats.iterations_max, &all, 1, MPI_INT, MPI_MAX, world);
     return all;
   }
-  if (n == 4) return static_cast<double>(rebuilds_);
-  if (n == 5) return static_cast<double>(collection_rebuilds_);
-  if (n == 6) return static_cast<double>(prune_rebuilds_);
-  if (n == 7 || n == 8) {
-    bigint local = n == 7 ? pair_->prune_fallbacks() : pair_->prune_atom_fallbacks(), all = 0;
+  if (n == 4) return static_cast<double>(ghost_widenings_);
+  if (n == 5) return static_cast<double>(list_reneighbours_);
+  if (n == 6 || n == 7) {
+    const SPHAstro::SearchStatistics &search = pair_->search_statistics();
+    bigint local = n == 6 ? search.step_builds : search.wide_rows, all = 0;
     MPI_Allreduce(&local, &all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
     return static_cast<double>(all);
   }

@@ -36,6 +36,7 @@ class FixSPHAstroH : public Fix {
   void init() override;
   void setup(int) override;
   void end_of_step() override;
+  void pre_exchange() override;
   void post_run() override;
   // h <- h exp(dt div v / d) for the group, capped; called by fix sph/astro in its drift once
   // the step's dt is final
@@ -47,11 +48,6 @@ class FixSPHAstroH : public Fix {
   double tolerance() const { return tolerance_; }
   int max_iterations() const { return max_iterations_; }
   double margin() const { return margin_; }
-  // the run ended early so that the neighbour lists are rebuilt for the current h
-  // (rebuild keyword); sph/astro/run then starts the next run, which sets new caps
-  bool rebuild_requested() const { return rebuild_requested_; }
-  void clear_rebuild_request() { rebuild_requested_ = false; }
-
   // settings pair sph/astro reads at its init: "iterate" (int), "hfact", "tolerance",
   // "maxiter" (int), "margin"
   void *extract(const char *, int &) override;
@@ -61,16 +57,14 @@ class FixSPHAstroH : public Fix {
   double hfact_;
   double tolerance_;
   int max_iterations_;
-  double margin_;     // neighbour cutoffs allow h up to margin x the largest h at init
-  double rebuild_;    // stop the run when h > rebuild x cap (or < cap / margin^2); 0: off
-  bool rebuild_requested_;
-  bigint rebuilds_;    // runs stopped for a rebuild since the fix was defined
-  // h collections for neighbor multi: 0 off, -1 auto (factor ~2 apart), else their number
-  int collections_;
-  bigint collection_rebuilds_;    // list builds forced because h outgrew its collection
-  bigint prune_rebuilds_;         // list builds forced because h neared its pruned list's limit
-  int outgrown_lists() const;
-  void setup_collections();
+  double margin_;    // a run's ghost cutoff serves h up to margin x the largest h
+  double h_max_;     // no h beyond it (keyword hmax; infinite by default)
+  static constexpr double WIDEN = 1.2;    // a widened cap serves >= WIDEN x the largest h
+  double user_cutghost_;                  // comm_modify cutoff when the run began
+  double pending_cutoff_;                 // ghost cutoff for the next reneighbouring step (0: none)
+  bigint ghost_widenings_;                // ghost cutoffs widened since the fix was defined
+  bigint list_reneighbours_;    // reneighbourings asked for because h neared its lists' limit
+  void check_limits();
 
   SPHAstro::StateIndex *state_;
   class PairSPHAstro *pair_;

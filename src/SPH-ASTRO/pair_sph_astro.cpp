@@ -52,15 +52,14 @@ PairSPHAstro::PairSPHAstro(LAMMPS *lmp) :
     Pair(lmp), opt_(new PairOptions()), fields_(new Fields()), lists_(new NeighbourLists(lmp)),
     hstats_(new GradhStatistics()), state_(new StateIndex()), entropy_index_(new EntropyIndex()),
     continuity_index_(new ContinuityIndex()), scheme_(new Scheme()), entropy_init_pending_(false),
-    density_init_pending_(false), alpha_atom_(nullptr), hcap_type_(nullptr), kernel_radius_(2.0),
-    h_failures_(0), prune_atom_fallbacks_(0), counts_step_(-1), computed_step_(-1),
+    density_init_pending_(false), alpha_atom_(nullptr), h_cap_start_(0.0), h_cap_(0.0),
+    sph_type_(nullptr), kernel_radius_(2.0), h_failures_(0), counts_step_(-1), computed_step_(-1),
     computed_nlocal_(-1), comm_table_(new CommTable())
 {
   single_enable = 0;
   restartinfo = 1;
   one_coeff = 1;
   manybody_flag = 1;    // forces depend on densities of both partners
-  finitecutflag = 1;    // per-atom cutoffs kernel_radius h_i for neighbor multi collections
   // rho, P, c_s, vest[3]; h, Omega, C (pressure-energy); alpha; u (cond.); Balsara f;
   // symmetric grad v, Delta
   comm_forward = 12 + VGRAD_DATA;
@@ -71,7 +70,7 @@ PairSPHAstro::~PairSPHAstro()
 {
   if (copymode) return;
   fields_->destroy(memory);
-  memory->destroy(hcap_type_);
+  memory->destroy(sph_type_);
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
@@ -114,7 +113,7 @@ void PairSPHAstro::allocate()
   for (int i = 1; i < n; i++)
     for (int j = i; j < n; j++) setflag[i][j] = 0;
   memory->create(cutsq, n, n, "pair:cutsq");
-  memory->create(hcap_type_, n, "pair:hcap_type");
+  memory->create(sph_type_, n, "pair:sph_type");
 }
 
 void PairSPHAstro::init_style()
@@ -136,16 +135,18 @@ void PairSPHAstro::init_style()
                "pair_style sph/astro density continuity: the per-atom state fix {} is missing",
                CONTINUITY_FIX_ID);
 
-  // every particle needs a positive mass and smoothing length; the list cutoffs are set
-  // by the largest h of each type
+  // every particle needs a positive mass and smoothing length; the ghost cutoff is set by
+  // the largest h
   const int nlocal = atom->nlocal;
   const int ntypes = atom->ntypes;
   const double *h = atom->dvector[state_->h];
   const double *rmass = atom->rmass;
   const double *mass = atom->mass;
   const int *type = atom->type;
-  std::vector<double> hmax_local(ntypes + 1, 0.0);
+  for (int t = 1; t <= ntypes; t++) sph_type_[t] = setflag[t][t] ? 1 : 0;
+  double hmax_local = 0.0, hmax = 0.0;
   for (int i = 0; i < nlocal; i++) {
+    if (!sph_type_[type[i]]) continue;
     const double mi = rmass ? rmass[i] : mass[type[i]];
     if (!(mi > 0.0) || !std::isfinite(mi))
       error->one(FLERR, "pair_style sph/astro: atom {} has mass {}; the mass must be > 0",
@@ -155,16 +156,13 @@ void PairSPHAstro::init_style()
                  "pair_style sph/astro: atom {} has smoothing length h = {}; h must be > 0 "
                  "(set it with: set group all d_h VALUE)",
                  atom->tag[i], h[i]);
-    hmax_local[type[i]] = MAX(hmax_local[type[i]], h[i]);
+    hmax_local = MAX(hmax_local, h[i]);
   }
-  MPI_Allreduce(hmax_local.data(), hcap_type_, ntypes + 1, MPI_DOUBLE, MPI_MAX, world);
-  double hmax = 0.0;
-  for (int t = 1; t <= ntypes; t++) hmax = MAX(hmax, hcap_type_[t]);
+  MPI_Allreduce(&hmax_local, &hmax, 1, MPI_DOUBLE, MPI_MAX, world);
   if (hmax <= 0.0)
     error->all(FLERR, "pair_style sph/astro: no particle has h > 0 (set group all d_h VALUE)");
-  // a type without particles yet gets the largest h of all
-  for (int t = 1; t <= ntypes; t++)
-    hcap_type_[t] = scheme_->margin * (hcap_type_[t] > 0.0 ? hcap_type_[t] : hmax);
+  // (an h above fix sph/astro/h hmax at the start keeps its value: the cap is not below it)
+  h_cap_start_ = h_cap_ = MAX(hmax, MIN(scheme_->margin * hmax, scheme_->h_max));
 
   const double support = o.kernel_radius() * hmax;
   if (neighbor->skin > support && comm->me == 0)
@@ -173,42 +171,45 @@ void PairSPHAstro::init_style()
                    "neighbour lists hold many non-neighbours; a skin of 0.1-0.3 x support is "
                    "usual",
                    neighbor->skin, support);
-
-  // (LAMMPS calls init_list() only for lists it makes anew: pointers to lists requested again
-  // stay valid, those not requested are dropped here)
-  if (gradh()) {
-    // full list for the per-particle h iteration, half list for the pair forces (with prune
-    // yes the half list is made from the full one, in the scan that prunes it)
-    neighbor->add_request(this, NeighConst::REQ_FULL)->set_id(1);
-    if (!o.prune)
-      neighbor->add_request(this)->set_id(2);
-    else
-      lists_->set_lammps_lists(nullptr, lists_->lammps_full());
-  } else {
-    neighbor->add_request(this);
-    lists_->set_lammps_lists(lists_->lammps_half(), nullptr);
-  }
+  lists_->invalidate();
+  // no LAMMPS neighbour list: the package searches the owned and ghost atoms itself
+  // (sph_astro_neighbour_lists.h); LAMMPS' cutoff from init_one() sets the ghost shell
 }
 
-void PairSPHAstro::init_list(int id, NeighList *ptr)
+/* ----------------------------------------------------------------------
+   the end of a run: what the neighbour search did, after LAMMPS' own neighbour statistics
+------------------------------------------------------------------------- */
+
+void PairSPHAstro::finish()
 {
-  if (gradh() && id == 1) {
-    lists_->set_lammps_lists(lists_->lammps_half(), ptr);
-    if (opt_->prune) list = ptr;    // Pair::list: the one LAMMPS list there is
-  } else {
-    list = ptr;
-    lists_->set_lammps_lists(ptr, lists_->lammps_full());
-  }
+  if (computed_step_ < 0) return;
+  const SearchStatistics &s = lists_->statistics();
+  const double *nneigh = neighbour_counts();
+  double local[6] = {
+      s.half_entries * s.atoms,     s.full_entries * s.atoms,          0.0,
+      static_cast<double>(s.atoms), static_cast<double>(atom->nghost), lists_->memory_usage()};
+  for (int i = 0; i < atom->nlocal; i++) local[2] += nneigh[i];
+  double all[6];
+  MPI_Allreduce(local, all, 6, MPI_DOUBLE, MPI_SUM, world);
+  bigint builds[2] = {s.builds, s.step_builds}, builds_max[2];
+  MPI_Allreduce(builds, builds_max, 2, MPI_LMP_BIGINT, MPI_MAX, world);
+  if (comm->me != 0) return;
+  const double atoms = MAX(all[3], 1.0);
+  utils::logmesg(lmp,
+                 "pair sph/astro neighbour search: lists made {} times after LAMMPS' builds "
+                 "and {} times inside a step (most on a rank); per particle: {:.1f} half-list "
+                 "entries, {:.1f} gather-row entries, {:.1f} neighbours inside the kernel "
+                 "support, {:.2f} ghost atoms, {:.0f} bytes of lists and tree\n",
+                 builds_max[0], builds_max[1], all[0] / atoms, all[1] / atoms, all[2] / atoms,
+                 all[4] / atoms, all[5] / atoms);
 }
 
 double PairSPHAstro::init_one(int i, int j)
 {
   if (setflag[i][j] == 0)
     error->all(FLERR, "pair_style sph/astro: pair_coeff for types {} {} is not set", i, j);
-  // W(h_i) and W(h_j) (grad-h terms or the averaged kernel) reach R max(h_i, h_j)
-  const double R = opt_->kernel_radius();
-  if (gradh() || opt_->symmetrise_kernel) return R * MAX(hcap_type_[i], hcap_type_[j]);
-  return R * 0.5 * (hcap_type_[i] + hcap_type_[j]);
+  // the ghost shell must hold every particle within R max(h_i, h_j) of an owned one
+  return opt_->kernel_radius() * h_cap_start_;
 }
 
 // per-atom arrays, grown to atom->nmax (owned + ghost), only those the scene needs
@@ -257,15 +258,10 @@ GradhSettings PairSPHAstro::gradh_settings() const
   s.hfact = scheme_->hfact;
   s.tolerance = scheme_->tolerance;
   s.max_iterations = scheme_->max_iterations;
-  s.full = lists_->lammps_full() ? lists_->full() : NeighView{0, nullptr, nullptr, nullptr};
-  s.fallback = lists_->lammps_full() ? view_of(lists_->lammps_full()) : s.full;
-  s.hlist = lists_->full_limits();
-  s.hcap_type = hcap_type_;
-  const bool collections =
-      neighbor->style == Neighbor::MULTI && neighbor->finite_cut_flag && neighbor->collection;
-  s.collection = collections ? neighbor->collection : nullptr;
-  s.collection_cut = neighbor->collection2cut;
-  s.kernel_radius = o.kernel_radius();
+  s.full = lists_->full();
+  s.hlist = lists_->limits();
+  s.wide = lists_->wide_rows();
+  s.h_cap = h_cap_;
   s.sums = o.reconstruction() ? VelocitySums::GRADIENT
       : scheme_->curl         ? VelocitySums::CURL
                               : VelocitySums::NONE;
@@ -297,12 +293,17 @@ void PairSPHAstro::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
   grow_fields();
-  const double *h = atom->dvector[state_->h];
-  if (!opt_->prune)
-    lists_->clear();
-  else if (neighbor->ago == 0)    // LAMMPS has built its lists in this step (or the setup)
-    lists_->prune(h, hcap_type_, scheme_->hmode == Scheme::HMode::FIXED ? 1.0 : PRUNE_GROWTH,
-                  opt_->kernel_radius());
+  // the lists: made after every LAMMPS build (reneighbouring), for the ghost cutoff of now
+  h_cap_ = (MAX(comm->cutghostuser, neighbor->cutneighmax) - neighbor->skin) / kernel_radius_;
+  h_cap_ = MAX(h_cap_start_, MIN(h_cap_, scheme_->h_max));
+  SearchSettings search;
+  search.kernel_radius = kernel_radius_;
+  search.growth = scheme_->hmode == Scheme::HMode::FIXED ? 1.0 : LIST_GROWTH;
+  search.h_cap = h_cap_;
+  search.full = gradh();
+  search.newton = force->newton_pair != 0;
+  search.sph_type = sph_type_;
+  lists_->update(atom->dvector[state_->h], search);
   alpha_atom_ = nullptr;
   if (scheme_->has_switch) {
     int flag, cols;
@@ -322,13 +323,12 @@ void PairSPHAstro::compute(int eflag, int vflag)
   PairExchange exchange(this);
   ForceEvaluation evaluation(ctx, *opt_, *scheme_, arrays, exchange);
   const EvaluationResult result =
-      evaluation.run(*lists_, gradh_settings(), *hstats_, hcap_type_,
+      evaluation.run(*lists_, gradh_settings(), *hstats_, h_cap_,
                      opt_->density_continuity && density_init_pending_, entropy_init_pending_);
   entropy_init_pending_ = false;
   if (opt_->density_continuity) density_init_pending_ = false;
   counts_step_ = result.counted ? update->ntimestep : -1;
   h_failures_ += result.h_failures;
-  prune_atom_fallbacks_ += result.list_fallbacks;
   if (vflag_fdotr) virial_fdotr_compute();
   computed_step_ = update->ntimestep;
   computed_nlocal_ = atom->nlocal;
@@ -411,49 +411,14 @@ void PairSPHAstro::read_restart_settings(FILE *fp)
   kernel_radius_ = opt_->kernel_radius();
 }
 
-/* ----------------------------------------------------------------------
-   h collections: with neighbor multi and interval collections (fix sph/astro/h collections),
-   LAMMPS bins every atom into the collection whose cutoff covers atom2cut(i), and searches
-   collection pairs out to radii2cut(cut_a/2, cut_b/2) + skin. The kernels reach R max(h_i,
-   h_j) (grad-h or the averaged kernel) or R (h_i + h_j)/2 (mean h_ij).
-------------------------------------------------------------------------- */
-
-double PairSPHAstro::atom2cut(int i)
+double PairSPHAstro::list_limit(int i) const
 {
-  // the lists of a run's setup allow every h up to its type's cap: the setup's h iteration
-  // may move h far from the start value; fix sph/astro/h has the lists rebuilt at step 1
-  const double R = opt_->kernel_radius();
-  const double cap = hcap_type_[atom->type[i]];
-  if (update->setupflag) return R * cap;
-  return R * MIN(atom->dvector[state_->h][i] * COLLECTION_GROWTH, cap);
+  return lists_->built() ? lists_->limit(i) : h_cap_;
 }
 
-double PairSPHAstro::radii2cut(double ri, double rj)
+const SearchStatistics &PairSPHAstro::search_statistics() const
 {
-  return (gradh() || opt_->symmetrise_kernel) ? 2.0 * MAX(ri, rj) : ri + rj;
-}
-
-double PairSPHAstro::h_limit(int i) const
-{
-  const double cap = hcap_type_[atom->type[i]];
-  if (neighbor->style != Neighbor::MULTI || !neighbor->finite_cut_flag || !neighbor->collection)
-    return cap;
-  return MIN(cap, neighbor->collection2cut[neighbor->collection[i]] / opt_->kernel_radius());
-}
-
-bool PairSPHAstro::pruning() const
-{
-  return opt_->prune;
-}
-
-double PairSPHAstro::prune_limit(int i) const
-{
-  return lists_->limit(i);
-}
-
-bigint PairSPHAstro::prune_fallbacks() const
-{
-  return lists_->fallbacks();
+  return lists_->statistics();
 }
 
 /* ----------------------------------------------------------------------
@@ -494,6 +459,16 @@ double PairSPHAstro::courant_signal_speed(int i) const
   return viscous_signal_speed(f.soundspeed[i], atom->dvector[state_->h][i], f.divv[i], a, b);
 }
 
+void PairSPHAstro::xsph_correction(double eps, double **out)
+{
+  PassContext ctx = context();
+  ctx.half = lists_->half(atom->dvector[state_->h]);
+  xsph_pass(ctx, out);
+  if (ctx.newton) reverse({{nullptr, out, 3, false}});
+  for (int i = 0; i < atom->nlocal; i++)
+    for (int d = 0; d < 3; d++) out[i][d] *= eps;
+}
+
 double PairSPHAstro::conductivity_rate(int i) const
 {
   return opt_->artificial_conductivity() ? fields_->condrate[i] : 0.0;
@@ -511,11 +486,8 @@ void *PairSPHAstro::extract(const char *name, int &dim)
   if (strcmp(name, "kernel_radius") == 0) return (void *) &kernel_radius_;
   if (strcmp(name, "alpha") == 0) return (void *) &opt_->alpha;
   if (strcmp(name, "beta") == 0) return (void *) &opt_->beta;
-  // entries per atom of this rank's latest pruned half and full lists (0: none)
-  if (strcmp(name, "pruned_list_lengths") == 0) {
-    dim = 1;
-    return (void *) lists_->lengths();
-  }
+  // the neighbour search's SearchStatistics (sph_astro_neighbour_lists.h) of this rank
+  if (strcmp(name, "search_statistics") == 0) return (void *) &lists_->statistics();
   return nullptr;
 }
 

@@ -24,6 +24,7 @@ struct EOS;
 struct Fields;
 struct PassContext;
 struct GradhStatistics;
+struct SearchStatistics;
 struct StateIndex;
 struct EntropyIndex;
 struct ContinuityIndex;
@@ -50,8 +51,8 @@ class PairSPHAstro : public Pair {
   void settings(int, char **) override;
   void coeff(int, char **) override;
   void init_style() override;
+  void finish() override;
   double init_one(int, int) override;
-  void init_list(int, class NeighList *) override;
   void write_restart(FILE *) override;
   void read_restart(FILE *) override;
   void write_restart_settings(FILE *) override;
@@ -61,11 +62,6 @@ class PairSPHAstro : public Pair {
   void unpack_forward_comm(int, int, double *) override;
   int pack_reverse_comm(int, int, double *) override;
   void unpack_reverse_comm(int, int *, double *) override;
-
-  // per-particle neighbour cutoffs for neighbor multi with h collections (fix sph/astro/h
-  // collections): atom i belongs to the collection that covers kernel_radius h_i growth
-  double atom2cut(int) override;
-  double radii2cut(double, double) override;
 
   void *extract(const char *, int &) override;
   void *extract_peratom(const char *, int &) override;
@@ -95,6 +91,9 @@ class PairSPHAstro : public Pair {
   double courant_signal_speed(int i) const;
   // the artificial conductivity's diffusion rate sum_j k_ij of atom i (0 without it)
   double conductivity_rate(int i) const;
+  // fix sph/astro xsph: dv_i = eps sum_j m_j / rho_ij (v_j - v_i) W(r_ij, h_ij) of the owned
+  // atoms into out (rows for owned and ghost atoms), over the pair's lists (collective)
+  void xsph_correction(double eps, double **out);
 
   // fix sph/astro: A from u (thermal entropy) and rho from one summation (density
   // continuity) at the next force evaluation
@@ -103,24 +102,18 @@ class PairSPHAstro : public Pair {
   const SPHAstro::GradhStatistics &h_statistics() const { return *hstats_; }
   bigint h_failures() const { return h_failures_; }
 
-  // neighbour lists: the largest h a particle of this type may take in this run (cutoffs)
-  double h_cap(int type) const { return hcap_type_[type]; }
-  // the largest h local atom i may take until the next list build: h_cap of its type, or
-  // less with h collections (the cutoff of the atom's collection)
-  double h_limit(int i) const;
-  // room an atom's collection leaves for its h to grow before lists are rebuilt
-  static constexpr double COLLECTION_GROWTH = 1.2;
-  // pruned lists (keyword prune): the largest h local atom i may take before the passes fall
-  // back to LAMMPS' lists (infinite when not pruning); fix sph/astro/h has the lists rebuilt
-  // when an h comes within PRUNE_REBUILD of it
-  bool pruning() const;
-  double prune_limit(int i) const;
-  static constexpr double PRUNE_GROWTH = 1.1;      // room for h to grow, variable h
-  static constexpr double PRUNE_REBUILD = 1.05;    // rebuild when PRUNE_REBUILD h > limit
-  // force evaluations whose pruned half list did not cover every h, and atoms whose h
-  // iteration went past its pruned list (both used LAMMPS' lists)
-  bigint prune_fallbacks() const;
-  bigint prune_atom_fallbacks() const { return prune_atom_fallbacks_; }
+  // neighbour search (sph_astro_neighbour_lists.h). h_cap: the largest h any particle may
+  // take, (ghost cutoff - skin) / kernel radius; a run starts with the ghost cutoff at
+  // kernel radius x h_cap_start + skin
+  double h_cap() const { return h_cap_; }
+  double h_cap_start() const { return h_cap_start_; }
+  double kernel_radius() const { return kernel_radius_; }
+  // the largest h atom i (owned or ghost) may take before its lists are made again; fix
+  // sph/astro/h has LAMMPS reneighbour when LIST_REBUILD h_i exceeds it
+  double list_limit(int i) const;
+  static constexpr double LIST_GROWTH = 1.1;      // room for h to grow, variable h
+  static constexpr double LIST_REBUILD = 1.05;    // reneighbour when LIST_REBUILD h > limit
+  const SPHAstro::SearchStatistics &search_statistics() const;
 
   // the communication of one stage of a force evaluation (sph_astro_force_evaluation.h):
   // owned -> ghost copies of these arrays, or the ghosts' parts summed into their owners
@@ -139,9 +132,11 @@ class PairSPHAstro : public Pair {
   SPHAstro::Scheme *scheme_;    // what the package's fixes ask for (sph_astro_scheme.h)
   bool entropy_init_pending_, density_init_pending_;
   double *alpha_atom_;
-  double *hcap_type_;       // margin x the largest h of each type at init
+  double h_cap_start_;      // margin x the largest h at init (sets the ghost cutoff)
+  double h_cap_;            // (ghost cutoff - skin) / kernel_radius_
+  int *sph_type_;           // per type: 1 if this pair style acts on it
   double kernel_radius_;    // the support is kernel_radius_ h
-  bigint h_failures_, prune_atom_fallbacks_;
+  bigint h_failures_;
   bigint counts_step_;    // step whose force evaluation the neighbour counts belong to
   bigint computed_step_;
   int computed_nlocal_;

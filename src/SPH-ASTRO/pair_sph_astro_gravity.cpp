@@ -484,7 +484,7 @@ void PairSPHAstroGravity::compute_zeta()
   }
   // 0 for h held at the cap (it does not follow rho) and atoms without SPH smoothing length
   for (int i = 0; i < nlocal; i++) {
-    if (!(h[i] > 0.0) || h[i] >= sph_->h_limit(i) || !(rho[i] > 0.0))
+    if (!(h[i] > 0.0) || h[i] >= sph_->h_cap() || !(rho[i] > 0.0))
       zeta_[i] = 0.0;
     else
       zeta_[i] *= -h[i] / (3.0 * rho[i]);

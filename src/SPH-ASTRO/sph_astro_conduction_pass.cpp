@@ -42,25 +42,34 @@ namespace {
     void end(int i, Own &own) const { conduct[i] += own.q; }
   };
 
+  // sum_j m_j / rho_ij (v_j - v_i) W_ij to i, m_i / rho_ij (v_i - v_j) W_ij to j
   struct XsphAdapter {
     static constexpr KernelUse use = KernelUse::VALUE;
     const Particles &p;
     const double *rho;
     double **v;
     double **out;
-    double eps;
     struct Own {
-      double s[3];
+      double m, s[3];
     };
-    void begin(int, Own &own) const { own.s[0] = own.s[1] = own.s[2] = 0.0; }
-    void pair(int i, int j, double w, Own &own, bool) const
+    void begin(int i, Own &own) const
     {
-      const double fac = iact_xsph(p.mass_of(j), rho[i], rho[j], w);
-      for (int d = 0; d < 3; d++) own.s[d] += fac * (v[j][d] - v[i][d]);
+      own.m = p.mass_of(i);
+      own.s[0] = own.s[1] = own.s[2] = 0.0;
+    }
+    void pair(int i, int j, double w, Own &own, bool update_j) const
+    {
+      const double fac_i = iact_xsph(p.mass_of(j), rho[i], rho[j], w);
+      const double fac_j = iact_xsph(own.m, rho[i], rho[j], w);
+      for (int d = 0; d < 3; d++) {
+        const double dv = v[j][d] - v[i][d];
+        own.s[d] += fac_i * dv;
+        if (update_j) out[j][d] -= fac_j * dv;
+      }
     }
     void end(int i, Own &own) const
     {
-      for (int d = 0; d < 3; d++) out[i][d] = eps * own.s[d];
+      for (int d = 0; d < 3; d++) out[i][d] += own.s[d];
     }
   };
 
@@ -78,12 +87,14 @@ void conduction_pass(const PassContext &ctx, double kappa, bool two_h)
   });
 }
 
-void xsph_pass(const PassContext &ctx, const NeighView &full, double eps, double **out)
+void xsph_pass(const PassContext &ctx, double **out)
 {
+  const int nzero = ctx.nzero();
+  for (int i = 0; i < nzero; i++) out[i][0] = out[i][1] = out[i][2] = 0.0;
   with_variant(ctx.kernel, ctx.dim, false, [&](auto v) {
     using V = decltype(v);
-    XsphAdapter act{ctx.p, ctx.rho, ctx.vest, out, eps};
-    pair_loop<typename V::kernel, V::dim, V::two_h>(full, ctx.p, false, false, act);
+    XsphAdapter act{ctx.p, ctx.rho, ctx.vest, out};
+    pair_loop<typename V::kernel, V::dim, V::two_h>(ctx.half, ctx.p, ctx.newton, false, act);
   });
 }
 

@@ -104,10 +104,10 @@ namespace {
     for (int ii = 0; ii < nl.inum; ii++) {
       const int i = nl.ilist[ii];
       const double mi = p.mass_of(i);
-      const double cap = s.h_limit(p, i);
+      const double cap = s.h_cap;
       const int *jlist = nl.firstneigh[i];
       int jnum = nl.numneigh[i];
-      double hlist = s.hlist ? s.hlist[i] : INFINITY;    // the largest h jlist serves
+      double hlist = s.hlist[i];    // the largest h jlist serves
 
       double hi = h[i] < cap ? h[i] : cap;
       double hlo = 0.0, hhi = INFINITY;    // f(h) = rho(h) - rho_target(h) rises with h
@@ -119,12 +119,7 @@ namespace {
       int it = 0;
       while (it < s.max_iterations) {
         it++;
-        if (hi > hlist) {
-          jlist = s.fallback.firstneigh[i];
-          jnum = s.fallback.numneigh[i];
-          hlist = INFINITY;
-          stats.list_fallbacks++;
-        }
+        if (hi > hlist) { jlist = s.wide->row(i, hi, hlist, jnum); }
         const double hinv = 1.0 / hi;
         const double norm = sigma * inv_h_pow_dim<DIM>(hinv);
         GradhSums mass, energy;
@@ -173,6 +168,12 @@ namespace {
         else
           hhi = hi;
         double hnew = hi - fval / fprime;
+        // a Newton step below the tolerance is convergence, even where round-off puts it on
+        // the bracket's edge (hnew == hlo), which would send the iteration to 2 h
+        if (fprime > 0.0 && std::fabs(hnew - hi) < s.tolerance * hi && hi < cap) {
+          converged = true;
+          break;
+        }
         if (!(fprime > 0.0) || !(hnew > hlo) || !(hnew < hhi))
           hnew = std::isfinite(hhi) ? 0.5 * (hlo + hhi) : 2.0 * hi;    // bisection fallback
         if (hnew >= cap && hi >= cap) {    // wants to grow past the cap: stay there

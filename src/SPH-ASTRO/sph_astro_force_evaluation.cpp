@@ -14,11 +14,13 @@
 namespace SPHAstro {
 
 EvaluationResult ForceEvaluation::run(NeighbourLists &lists, const GradhSettings &gradh,
-                                      GradhStatistics &hstats, const double *hcap_type,
+                                      GradhStatistics &hstats, double h_cap,
                                       bool initialise_density, bool initialise_entropy)
 {
   EvaluationResult result;
-  hcap_type_ = hcap_type;
+  h_cap_ = h_cap;
+  if (scheme_.hmode == Scheme::HMode::DHDT)
+    exchange_.forward({{a_.h, nullptr, 1, false}});    // the ghosts' h of this step
   if (!scheme_.gradh()) ctx_.half = lists.half(a_.h);
   density(gradh, hstats, initialise_density, result);
   if (scheme_.gradh()) ctx_.half = lists.half(a_.h);    // h is that of the iteration now
@@ -40,14 +42,11 @@ void ForceEvaluation::density(const GradhSettings &gradh, GradhStatistics &hstat
                               EvaluationResult &result)
 {
   Fields &f = *ctx_.f;
-  if (scheme_.hmode == Scheme::HMode::DHDT)
-    exchange_.forward({{a_.h, nullptr, 1, false}});    // the ghosts' h of this step
   if (o_.pressure_energy) exchange_.forward({{ctx_.uest, nullptr, 1, false}});    // their u
   if (scheme_.gradh()) {
     if (gradh.sums != VelocitySums::NONE) exchange_.forward({{nullptr, ctx_.vest, 3, false}});
     density_gradh(ctx_, gradh, hstats);
     result.counted = true;
-    result.list_fallbacks = hstats.list_fallbacks;
     result.h_failures = hstats.failures;
     return;
   }
@@ -63,7 +62,7 @@ void ForceEvaluation::density(const GradhSettings &gradh, GradhStatistics &hstat
 
 void ForceEvaluation::equation_of_state(bool initialise_entropy)
 {
-  SPHAstro::equation_of_state(ctx_, o_.eos, hcap_type_, o_.density_continuity,
+  SPHAstro::equation_of_state(ctx_, o_.eos, h_cap_, o_.density_continuity,
                               scheme_.entropy ? &a_.entropy : nullptr, initialise_entropy);
 }
 

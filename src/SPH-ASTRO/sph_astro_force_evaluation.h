@@ -49,7 +49,7 @@ struct EvaluationArrays {
 // what an evaluation leaves for the pair to report
 struct EvaluationResult {
   bool counted = false;    // the density pass counted the neighbours
-  LAMMPS_NS::bigint h_failures = 0, list_fallbacks = 0;
+  LAMMPS_NS::bigint h_failures = 0;
 };
 
 class ForceEvaluation {
@@ -60,10 +60,10 @@ class ForceEvaluation {
       o_(options), scheme_(scheme), a_(arrays), exchange_(exchange)
   {
   }
-  // gradh: the h-rho iteration's settings (lists, caps); hcap_type: h caps per type;
+  // gradh: the h-rho iteration's settings (lists, caps); h_cap: the largest h the ghosts allow;
   // initialise_density: one summation for density continuity; initialise_entropy: A from u
   EvaluationResult run(NeighbourLists &lists, const GradhSettings &gradh, GradhStatistics &hstats,
-                       const double *hcap_type, bool initialise_density, bool initialise_entropy);
+                       double h_cap, bool initialise_density, bool initialise_entropy);
 
  private:
   PassContext &ctx_;
@@ -71,7 +71,7 @@ class ForceEvaluation {
   const Scheme &scheme_;
   const EvaluationArrays &a_;
   Exchange &exchange_;
-  const double *hcap_type_ = nullptr;
+  double h_cap_ = 0.0;
 
   void density(const GradhSettings &gradh, GradhStatistics &hstats, bool initialise,
                EvaluationResult &result);

@@ -11,221 +11,199 @@
 #include "domain.h"
 #include "error.h"
 #include "force.h"
-#include "memory.h"
-#include "neigh_list.h"
 #include "neighbor.h"
-#include "pair.h"
+#include "update.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 
 using namespace LAMMPS_NS;
 
 namespace SPHAstro {
 
-NeighbourLists::~NeighbourLists()
+void RowStore::reset()
 {
-  memory->destroy(hprune_);
+  current_ = 0;
+  used_ = 0;
+  entries_ = 0;
 }
 
-void NeighbourLists::set_lammps_lists(NeighList *half, NeighList *full)
+int *RowStore::append(const int *row, int n)
 {
-  lammps_half_ = half;
-  lammps_full_ = full;
+  const std::size_t need = static_cast<std::size_t>(n);
+  while (current_ < chunks_.size() && used_ + need > sizes_[current_]) {
+    current_++;
+    used_ = 0;
+  }
+  if (current_ == chunks_.size()) {
+    const std::size_t size = std::max(CHUNK, need);
+    chunks_.emplace_back(new int[size]);
+    sizes_.push_back(size);
+    used_ = 0;
+  }
+  int *out = chunks_[current_].get() + used_;
+  if (n) std::memcpy(out, row, need * sizeof(int));
+  used_ += need;
+  entries_ += need;
+  return out;
 }
 
-void NeighbourLists::clear()
+double RowStore::memory_usage() const
 {
-  pruned_half_.clear();
-  pruned_full_.clear();
-  fallback_half_.clear();
+  double bytes = 0.0;
+  for (std::size_t size : sizes_) bytes += static_cast<double>(size * sizeof(int));
+  return bytes;
 }
 
 /* ----------------------------------------------------------------------
-   made when LAMMPS has just built its lists: the atoms sit where the build saw them, so a pair
-   that comes within a kernel support before the next build is now closer than that support
-   plus the skin (fixed h: growth 1, h does not change during a run)
+   after LAMMPS' build (reneighbouring) the atoms sit where LAMMPS saw them: a pair that comes
+   inside a kernel support before the next build is now closer than that support + skin
 ------------------------------------------------------------------------- */
 
-void NeighbourLists::prune(const double *h, const double *hcap_type, double growth,
-                           double kernel_radius)
+void NeighbourLists::update(const double *h, const SearchSettings &s)
 {
-  double **x = atom->x;
-  const int *type = atom->type;
-  const int nall = atom->nlocal + atom->nghost;
-  if (atom->nmax > nmax_) {
-    nmax_ = atom->nmax;
-    memory->grow(hprune_, nmax_, "pair:sph/astro:hprune");
-  }
-  for (int i = 0; i < nall; i++) hprune_[i] = MIN(growth * h[i], hcap_type[type[i]]);
-  const double skin = neighbor->skin;
-  const double R = kernel_radius;
-  const double *hl = hprune_;
-  const HalfFromFull half_rule = half_from_full();
-  fallback_half_.clear();
-  pruned_full_.clear();
-  if (!lammps_full_ && nothing_to_prune(kernel_radius)) {    // LAMMPS' half list as it is
-    pruned_half_.clear();
-    lengths_[0] = lengths_[1] = 0.0;
-    return;
-  }
-
-  // one scan of LAMMPS' full list (grad-h) or half list
-  NeighList *src = lammps_full_ ? lammps_full_ : lammps_half_;
-  begin(pruned_half_, src);
-  if (lammps_full_) {
-    begin(pruned_full_, src);
-    // LAMMPS' half-from-full rule compares positions: taken now, at the build, for every entry
-    const std::size_t entries = list_entries(src);
-    if (half_keep_.size() < entries) half_keep_.resize(entries + entries / 4);
-  }
-  std::size_t offset = 0;
-  for (int ii = 0; ii < src->inum; ii++) {
-    const int i = src->ilist[ii];
-    const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
-    const double hli = hl[i];
-    const double reach_full = R * hli + skin;
-    const double reach_full2 = reach_full * reach_full;
-    const int *jlist = src->firstneigh[i];
-    const int jnum = src->numneigh[i];
-    int *half = row(pruned_half_, i);
-    int *full = lammps_full_ ? row(pruned_full_, i) : nullptr;
-    int nhalf = 0, nfull = 0;
-    // branch-free compaction: every entry is written at the next free place of its row and
-    // kept by advancing the count (a row has room for neigh_modify one >= jnum entries)
-    if (lammps_full_) {
-      unsigned char *keep = half_keep_.data() + offset;
-      for (int jj = 0; jj < jnum; jj++) {
-        const int j = jlist[jj] & NEIGHMASK;
-        const bool in_half = half_rule.keeps(x, i, j);
-        keep[jj] = in_half;
-        const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
-        const double r2 = dx * dx + dy * dy + dz * dz;
-        const double reach = R * MAX(hli, hl[j]) + skin;
-        const bool within = r2 < reach * reach;    // reach >= reach_full
-        half[nhalf] = jlist[jj];
-        nhalf += in_half & within;
-        full[nfull] = jlist[jj];
-        nfull += within & (r2 < reach_full2);
-      }
-    } else {
-      for (int jj = 0; jj < jnum; jj++) {
-        const int j = jlist[jj] & NEIGHMASK;
-        const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
-        const double r2 = dx * dx + dy * dy + dz * dz;
-        const double reach = R * MAX(hli, hl[j]) + skin;
-        half[nhalf] = jlist[jj];
-        nhalf += r2 < reach * reach;
-      }
-    }
-    offset += jnum;
-    pruned_half_.close(i, nhalf);
-    if (lammps_full_) pruned_full_.close(i, nfull);
-  }
-  const double inum = MAX(src->inum, 1);
-  lengths_[0] = pruned_half_.entries() / inum;
-  lengths_[1] = lammps_full_ ? pruned_full_.entries() / inum : 0.0;
-}
-
-// whether the pruned half list would keep every entry of LAMMPS' half list: LAMMPS keeps the
-// pairs of types (a, b) closer than its cutoff + skin, the pruned list those closer than
-// R max(hl_i, hl_j) + skin, so nothing goes where R max(hl_a^min, hl_b^min) reaches the cutoff
-// for every type pair (one h per type with fixed h). LAMMPS' list then saves the scan and the
-// memory; the sums are the same either way (entries outside every support add nothing).
-bool NeighbourLists::nothing_to_prune(double kernel_radius) const
-{
-  const int ntypes = atom->ntypes;
-  const int nall = atom->nlocal + atom->nghost;
-  const int *type = atom->type;
-  double **cutsq = force->pair->cutsq;
-  std::vector<double> hlmin(ntypes + 1, INFINITY);
-  for (int i = 0; i < nall; i++) hlmin[type[i]] = MIN(hlmin[type[i]], hprune_[i]);
-  for (int a = 1; a <= ntypes; a++)
-    for (int b = a; b <= ntypes; b++) {
-      if (hlmin[a] == INFINITY || hlmin[b] == INFINITY) continue;    // no such atoms here
-      const double reach = kernel_radius * MAX(hlmin[a], hlmin[b]);
-      if (reach * reach < cutsq[a][b]) return false;
-    }
-  return true;
-}
-
-// rows of at most neigh_modify one entries, in LAMMPS' page size
-void NeighbourLists::begin(PrunedList &list, const NeighList *src)
-{
-  if (!list.begin(src->inum, src->ilist, atom->nmax, neighbor->oneatom, neighbor->pgsize))
-    error->one(FLERR,
-               "pair_style sph/astro prune: cannot set up list pages (neigh_modify one {}, page "
-               "{})",
-               neighbor->oneatom, neighbor->pgsize);
-}
-
-int *NeighbourLists::row(PrunedList &list, int i)
-{
-  int *r = list.row(i);
-  if (!r)
-    error->one(FLERR,
-               "pair_style sph/astro prune: out of memory for the pruned neighbour lists; use "
-               "prune no");
-  return r;
-}
-
-HalfFromFull NeighbourLists::half_from_full() const
-{
-  return {atom->nlocal, force->newton_pair != 0, domain->triclinic != 0, 0.01 * force->angstrom};
-}
-
-// LAMMPS' half list, or with grad-h and prune the half list made from LAMMPS' full list by
-// LAMMPS' rule (decided at the build), when a pass first needs it after a build
-NeighView NeighbourLists::unpruned_half()
-{
-  if (lammps_half_) return view_of(lammps_half_);
-  if (!pruned_half_.built())    // (a run's setup builds the lists, and they are pruned there)
-    error->all(FLERR,
-               "pair_style sph/astro prune yes: no neighbour list was built in this run's setup; "
-               "run with pre yes after changing the pair style");
-  if (!fallback_half_.built()) {
-    begin(fallback_half_, lammps_full_);
-    std::size_t offset = 0;
-    for (int ii = 0; ii < lammps_full_->inum; ii++) {
-      const int i = lammps_full_->ilist[ii];
-      const int *jlist = lammps_full_->firstneigh[i];
-      const int jnum = lammps_full_->numneigh[i];
-      int *half = row(fallback_half_, i);
-      int n = 0;
-      for (int jj = 0; jj < jnum; jj++)
-        if (half_keep_[offset + jj]) half[n++] = jlist[jj];
-      fallback_half_.close(i, n);
-      offset += jnum;
-    }
-  }
-  return fallback_half_.view();
+  settings_ = s;
+  // LAMMPS built in this step (ago 0) and not yet for these lists: a new step, or a new run
+  // (its setup builds at the step the previous run ended on)
+  if (built_ && !(neighbor->ago == 0 && (stale_ || lmp->update->ntimestep != build_step_))) return;
+  stale_ = false;
+  build_step_ = lmp->update->ntimestep;
+  build(h, neighbor->skin);
+  motion_ = 0.5 * neighbor->skin;
+  stats_.builds++;
 }
 
 NeighView NeighbourLists::half(const double *h)
 {
-  if (!pruned_half_.built()) return unpruned_half();
   const int nall = atom->nlocal + atom->nghost;
-  for (int i = 0; i < nall; i++)
-    if (h[i] > hprune_[i]) {
-      fallbacks_++;
-      return unpruned_half();
+  const double *hl = hl_.data();
+  bool outgrown = false;
+  for (int i = 0; i < nall; i++) outgrown |= h[i] > hl[i];
+  if (outgrown) {
+    // atoms are up to skin/2 from LAMMPS' last build and go up to skin/2 from it before the
+    // next one: up to skin from here, pairs up to 2 skin closer
+    build(h, 2.0 * neighbor->skin);
+    motion_ = neighbor->skin;
+    stats_.step_builds++;
+  }
+  return half_.view(inum_, ilist_.data());
+}
+
+void NeighbourLists::build(const double *h, double pad)
+{
+  double **x = atom->x;
+  const int *type = atom->type;
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  const SearchSettings &s = settings_;
+  const double R = s.kernel_radius;
+  if (static_cast<int>(hl_.size()) < atom->nmax) {
+    hl_.resize(atom->nmax);
+    radius_.resize(atom->nmax);
+    half_.numneigh.resize(atom->nmax);
+    half_.firstneigh.resize(atom->nmax);
+    if (s.full) {
+      full_.numneigh.resize(atom->nmax);
+      full_.firstneigh.resize(atom->nmax);
     }
-  return pruned_half_.view();
+  }
+  if (s.full && static_cast<int>(full_.numneigh.size()) < atom->nmax) {
+    full_.numneigh.resize(atom->nmax);
+    full_.firstneigh.resize(atom->nmax);
+  }
+  members_.clear();
+  ilist_.clear();
+  for (int i = 0; i < nall; i++) {
+    hl_[i] = std::min(s.growth * h[i], s.h_cap);
+    radius_[i] = R * hl_[i];
+    if (!s.sph_type[type[i]]) continue;
+    members_.push_back(i);
+    if (i < nlocal) ilist_.push_back(i);
+  }
+  inum_ = static_cast<int>(ilist_.size());
+  tree_.build(x, radius_.data(), members_.data(), static_cast<int>(members_.size()));
+
+  const HalfFromFull half_rule{nlocal, s.newton, domain->triclinic != 0, 0.01 * force->angstrom};
+  half_.rows.reset();
+  full_.rows.reset();
+  // leaf by leaf: one traversal per leaf collects its candidates (sph_astro_neighbour_tree.h)
+  const int leaves = tree_.leaves();
+  for (int l = 0; l < leaves; l++) {
+    bool owned = false;
+    for (int k = tree_.leaf_begin(l); k < tree_.leaf_end(l); k++) owned |= tree_.point(k) < nlocal;
+    if (!owned) continue;
+    tree_.query_leaf(l, pad, [&](int k, const int *found, int n) {
+      const int i = tree_.point(k);
+      if (i >= nlocal) return;
+      scratch_.resize(n);
+      int m = 0;
+      for (int c = 0; c < n; c++) {
+        const int j = tree_.point(found[c]);
+        scratch_[m] = j;
+        m += j != i;
+      }
+      // (rows in atom order: every sum over a row then runs in an order that does not depend
+      // on the tree, so a run continued from a restart, or with lists made at other steps,
+      // adds the same terms in the same order)
+      if (s.full) {    // the gather rows: r < R hl_i + pad
+        const double reach = radius_[i] + pad;
+        const double reach2 = reach * reach;
+        const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
+        full_scratch_.resize(m);
+        int nfull = 0;
+        for (int c = 0; c < m; c++) {
+          const int j = scratch_[c];
+          const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
+          full_scratch_[nfull] = j;
+          nfull += dx * dx + dy * dy + dz * dz < reach2;
+        }
+        full_.firstneigh[i] = full_.rows.append(full_scratch_.data(), nfull);
+        full_.numneigh[i] = nfull;
+      }
+      int nhalf = 0;
+      for (int c = 0; c < m; c++) {
+        const int j = scratch_[c];
+        scratch_[nhalf] = j;
+        nhalf += half_rule.keeps(x, i, j);
+      }
+      half_.firstneigh[i] = half_.rows.append(scratch_.data(), nhalf);
+      half_.numneigh[i] = nhalf;
+    });
+  }
+  built_ = true;
+  const double atoms = std::max(inum_, 1);
+  stats_.atoms = inum_;
+  stats_.half_entries = half_.rows.entries() / atoms;
+  stats_.full_entries = s.full ? full_.rows.entries() / atoms : 0.0;
 }
 
-NeighView NeighbourLists::full() const
+// a gather row searched at the current positions (the tree knows how far atoms may have moved)
+const int *NeighbourLists::row(int i, double h, double &h_row, int &n)
 {
-  return pruned_full_.built() ? pruned_full_.view() : view_of(lammps_full_);
-}
-
-double NeighbourLists::limit(int i) const
-{
-  return pruned_half_.built() ? hprune_[i] : INFINITY;
+  double **x = atom->x;
+  h_row = std::min(WideRows::WIDE_ROW * h, settings_.h_cap);
+  // (an h at the cap: the row serves any h the iteration may try, which it caps)
+  if (h_row >= settings_.h_cap) h_row = INFINITY;
+  const double reach = settings_.kernel_radius * std::min(h_row, settings_.h_cap);
+  scratch_.clear();
+  tree_.query(x, radius_.data(), x[i], reach, 0.0, motion_, [&](int j, double) {
+    if (j != i) scratch_.push_back(j);
+  });
+  std::sort(scratch_.begin(), scratch_.end());
+  stats_.wide_rows++;
+  n = static_cast<int>(scratch_.size());
+  return scratch_.data();
 }
 
 double NeighbourLists::memory_usage() const
 {
-  return nmax_ * sizeof(double) + pruned_half_.memory_usage() + pruned_full_.memory_usage() +
-      fallback_half_.memory_usage() + half_keep_.capacity();
+  const double per_atom = hl_.capacity() * sizeof(double) + radius_.capacity() * sizeof(double) +
+      half_.numneigh.capacity() * (sizeof(int) + sizeof(int *)) +
+      full_.numneigh.capacity() * (sizeof(int) + sizeof(int *)) +
+      (ilist_.capacity() + members_.capacity()) * sizeof(int);
+  return per_atom + tree_.memory_usage() + half_.rows.memory_usage() + full_.rows.memory_usage() +
+      (scratch_.capacity() + full_scratch_.capacity()) * sizeof(int);
 }
 
 }    // namespace SPHAstro

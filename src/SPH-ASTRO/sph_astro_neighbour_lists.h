@@ -5,69 +5,124 @@
    (the same licence as LAMMPS); see the LICENSE file.
 ------------------------------------------------------------------------- */
 
-// The neighbour lists the passes of pair sph/astro walk: LAMMPS' lists, or those lists pruned
-// to the kernel supports at each list build (keyword prune, sph_astro_pruned_list.h). With
-// grad-h terms and prune yes, LAMMPS gives only the full list; the half list is made from it
-// by LAMMPS' own half-from-full rule in the scan that prunes it.
+// The neighbour lists of pair sph/astro, made by the package's own search over LAMMPS' owned
+// and ghost atoms (sph_astro_neighbour_tree.h); LAMMPS still decomposes the domain, exchanges
+// atoms, makes the ghosts and decides when atoms have moved too far (neighbor skin).
+//
+// With hl_i = min(growth h_i, h_cap) the largest h the lists serve (growth 1 with fixed h),
+// R the kernel's support radius and pad the skin, the lists hold for each owned SPH atom i
+//   half list:  j with r_ij < R max(hl_i, hl_j) + pad, each pair once (LAMMPS' half-list rule
+//               for newton on and off, sph_astro_neigh_view.h)
+//   full list:  j with r_ij < R hl_i + pad (the gather rows of the h-rho iteration; grad-h only)
+// They are made when LAMMPS has built its neighbour structures (reneighbouring: no atom has
+// moved more than skin/2 since, pad = skin), and at once, inside a step, when an h outgrows
+// its hl (pad = 2 skin: atoms have moved up to skin/2 before and up to skin/2 after, relative to
+// LAMMPS' last build). While every h <= hl, every pair inside a kernel support is in the lists,
+// so each sum over them is the sum over all particles. h_cap follows LAMMPS' ghost cutoff:
+// (cutoff - skin) / R, the largest support inside which all particles are owned or ghosts.
 
 #ifndef LMP_SPH_ASTRO_NEIGHBOUR_LISTS_H
 #define LMP_SPH_ASTRO_NEIGHBOUR_LISTS_H
 
 #include "pointers.h"
-#include "sph_astro_pruned_list.h"
+#include "sph_astro_neigh_view.h"
+#include "sph_astro_neighbour_tree.h"
+#include "sph_astro_passes.h"
 
+#include <memory>
 #include <vector>
 
 namespace SPHAstro {
 
-class NeighbourLists : protected LAMMPS_NS::Pointers {
+// rows of ints in chunks that never move once written: memory grows with the entries kept
+class RowStore {
  public:
-  explicit NeighbourLists(LAMMPS_NS::LAMMPS *lmp) : Pointers(lmp) {}
-  ~NeighbourLists() override;
-
-  // LAMMPS' lists of this run: half (null with grad-h and prune), full (null without grad-h)
-  void set_lammps_lists(LAMMPS_NS::NeighList *half, LAMMPS_NS::NeighList *full);
-  LAMMPS_NS::NeighList *lammps_half() const { return lammps_half_; }
-  LAMMPS_NS::NeighList *lammps_full() const { return lammps_full_; }
-
-  // at a LAMMPS list build: prune to r_ij < R max(hl_i, hl_j) + skin (half list) and
-  // r_ij < R hl_i + skin (full list), hl = min(growth h, the type's cap) (owned + ghost)
-  void prune(const double *h, const double *hcap_type, double growth, double kernel_radius);
-  // prune no
-  void clear();
-
-  // the pruned half list if it covers every h (owned + ghost), else LAMMPS' (or the half
-  // list made from LAMMPS' full list by its rule)
-  NeighView half(const double *h);
-  // the full list of the h iteration (pruned where built), the largest h each row serves
-  // (null: any) and LAMMPS' full list for rows whose h goes past it
-  NeighView full() const;
-  const double *full_limits() const { return pruned_full_.built() ? hprune_ : nullptr; }
-  // the largest h atom i may take before the passes fall back to LAMMPS' lists
-  double limit(int i) const;
-  bool pruned() const { return pruned_half_.built(); }
-
-  // force evaluations whose half list did not cover every h (they used LAMMPS' lists)
-  LAMMPS_NS::bigint fallbacks() const { return fallbacks_; }
-  // entries per atom of the latest pruned half and full list (0: none)
-  double *lengths() { return lengths_; }
+  void reset();
+  int *append(const int *row, int n);
+  std::size_t entries() const { return entries_; }
   double memory_usage() const;
 
  private:
-  LAMMPS_NS::NeighList *lammps_half_ = nullptr, *lammps_full_ = nullptr;
-  PrunedList pruned_half_, pruned_full_;
-  PrunedList fallback_half_;                // grad-h with prune: unpruned half list, on demand
-  std::vector<unsigned char> half_keep_;    // per full-list entry: in LAMMPS' half list
-  double *hprune_ = nullptr;                // hl of owned and ghost atoms at the build
-  int nmax_ = 0;
-  LAMMPS_NS::bigint fallbacks_ = 0;
-  double lengths_[2] = {0.0, 0.0};
+  static constexpr std::size_t CHUNK = 1 << 16;
+  std::vector<std::unique_ptr<int[]>> chunks_;
+  std::vector<std::size_t> sizes_;
+  std::size_t current_ = 0, used_ = 0, entries_ = 0;
+};
 
-  NeighView unpruned_half();
-  HalfFromFull half_from_full() const;
-  bool nothing_to_prune(double kernel_radius) const;
-  void begin(PrunedList &list, const LAMMPS_NS::NeighList *src);
-  int *row(PrunedList &list, int i);
+// one list: rows of the atoms ilist[0..inum)
+struct SearchList {
+  std::vector<int> numneigh;
+  std::vector<int *> firstneigh;
+  RowStore rows;
+  NeighView view(int inum, const int *ilist) const
+  {
+    return {inum, ilist, numneigh.data(), firstneigh.data()};
+  }
+};
+
+struct SearchSettings {
+  double kernel_radius;    // R
+  double growth;           // hl = growth h (1 with fixed h)
+  double h_cap;            // hl <= h_cap
+  bool full;               // gather rows of the h-rho iteration
+  bool newton;
+  const int *sph_type;    // per type: 1 if the pair style acts on it
+};
+
+struct SearchStatistics {
+  LAMMPS_NS::bigint builds = 0;         // list builds after LAMMPS' builds
+  LAMMPS_NS::bigint step_builds = 0;    // builds inside a step because an h outgrew its list
+  LAMMPS_NS::bigint wide_rows = 0;      // h iterations that went past their row's limit
+  double half_entries = 0.0, full_entries = 0.0;    // per atom, latest build (this rank)
+  int atoms = 0;                                    // owned SPH atoms, latest build
+};
+
+class NeighbourLists : protected LAMMPS_NS::Pointers {
+ public:
+  explicit NeighbourLists(LAMMPS_NS::LAMMPS *lmp) : Pointers(lmp) {}
+
+  // make the lists after LAMMPS' build if not yet made for it
+  void update(const double *h, const SearchSettings &s);
+  // a run begins (its setup rebuilds LAMMPS' structures, possibly at the same step)
+  void invalidate() { stale_ = true; }
+  // the half list, made again first if an h (owned or ghost) outgrew its hl
+  NeighView half(const double *h);
+  NeighView full() const { return full_.view(inum_, ilist_.data()); }
+  // the largest h each row serves (owned and ghost)
+  const double *limits() const { return hl_.data(); }
+  double limit(int i) const { return hl_[i]; }
+  bool built() const { return built_; }
+
+  // every j with r_ij < R h_row, h_row = min(1.5 h, h_cap) (the rows of an h iteration past
+  // its list's limit; WideRows)
+  const int *row(int i, double h, double &h_row, int &n);
+  WideRows *wide_rows() { return &wide_; }
+
+  const SearchStatistics &statistics() const { return stats_; }
+  double memory_usage() const;
+
+ private:
+  bool built_ = false;
+  bool stale_ = true;
+  LAMMPS_NS::bigint build_step_ = -1;    // the step of the latest build after LAMMPS'
+  SearchSettings settings_{};
+  double motion_ = 0.0;    // how far atoms may be from where the tree saw them
+  NeighbourTree tree_;
+  std::vector<double> hl_, radius_;
+  std::vector<int> ilist_, members_, scratch_, full_scratch_;
+  int inum_ = 0;
+  SearchList half_, full_;
+  SearchStatistics stats_;
+  struct Wide : WideRows {
+    NeighbourLists *lists;
+    explicit Wide(NeighbourLists *l) : lists(l) {}
+    const int *row(int i, double h, double &h_row, int &n) override
+    {
+      return lists->row(i, h, h_row, n);
+    }
+  } wide_{this};
+
+  void build(const double *h, double pad);
 };
 
 }    // namespace SPHAstro

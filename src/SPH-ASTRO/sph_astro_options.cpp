@@ -27,7 +27,7 @@ namespace SPHAstro {
                         [conductivity ALPHA_U] [conduction KAPPA] [epsilon EPS]
                         [density summation|continuity] [symmetrise hmean|kernel]
                         [pressure standard|geometric]
-                        [formulation density-energy|pressure-energy] [prune yes|no]
+                        [formulation density-energy|pressure-energy]
 ------------------------------------------------------------------------- */
 
 void PairOptions::parse(LAMMPS *lmp, int narg, char **arg)
@@ -197,15 +197,11 @@ void PairOptions::parse(LAMMPS *lmp, int narg, char **arg)
       need(2, key);
       pressure_energy = choice(key, arg[iarg + 1], "density-energy", "pressure-energy");
       iarg += 2;
-    } else if (key == "prune") {
-      need(2, key);
-      prune = utils::logical(FLERR, arg[iarg + 1], false, lmp) == 1;
-      iarg += 2;
     } else
       error->all(FLERR,
                  "pair_style sph/astro: unknown keyword '{}'; allowed: kernel, eos, viscosity, "
                  "balsara, reconstruct, conductivity, conduction, epsilon, density, symmetrise, "
-                 "pressure, formulation, prune",
+                 "pressure, formulation",
                  key);
   }
   if (balsara && !has_viscosity())
@@ -289,7 +285,7 @@ void PairOptions::write_restart(FILE *fp) const
   fwrite(dval, sizeof(double), 7, fp);
   fwrite(&conduction, sizeof(double), 1, fp);
   const int options = (density_continuity ? 1 : 0) + (symmetrise_kernel ? 2 : 0) +
-      (pressure_geometric ? 4 : 0) + (prune ? 0 : 8) + (pressure_energy ? 16 : 0);
+      (pressure_geometric ? 4 : 0) + (pressure_energy ? 16 : 0);    // 8: unused
   fwrite(&options, sizeof(int), 1, fp);
   fwrite(&recon_trigger, sizeof(double), 1, fp);
   fwrite(&recon_gate, sizeof(int), 1, fp);
@@ -334,7 +330,6 @@ void PairOptions::read_restart(LAMMPS *lmp, FILE *fp)
   density_continuity = (options & 1) != 0;
   symmetrise_kernel = (options & 2) != 0;
   pressure_geometric = (options & 4) != 0;
-  prune = (options & 8) == 0;
   pressure_energy = (options & 16) != 0;
   recon_trigger = trigger;
   recon_gate = gate;

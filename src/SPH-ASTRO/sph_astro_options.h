@@ -43,7 +43,6 @@ struct PairOptions {
   bool symmetrise_kernel = false;     // (W(h_i) + W(h_j))/2 instead of W(h_ij)
   bool pressure_geometric = false;    // 2 sqrt(P_i P_j)/(rho_i rho_j)
   bool pressure_energy = false;       // formulation pressure-energy (Hopkins 2013)
-  bool prune = true;                  // passes over lists pruned to the kernel supports
 
   // parse pair_style arguments (a repeated pair_style starts from the defaults); errors name
   // the keyword, the value and what is allowed

@@ -27,7 +27,7 @@
 
 #include "lmptype.h"
 #include "sph_astro_iact.h"
-#include "sph_astro_pruned_list.h"
+#include "sph_astro_neigh_view.h"
 
 namespace SPHAstro {
 

@@ -61,31 +61,28 @@ void count_neighbours(const PassContext &ctx, bool two_h);
 
 // the h-rho iteration over a full list (Springel & Hernquist 2002; Price 2012, sec. 2.4)
 enum class VelocitySums { NONE, CURL, GRADIENT };
+// the rows of an h iteration that went past its list's limit: every j with r_ij < R h_row,
+// h_row = min(WIDE_ROW x h, h_cap) (returned)
+struct WideRows {
+  static constexpr double WIDE_ROW = 1.5;
+  virtual const int *row(int i, double h, double &h_row, int &n) = 0;
+  virtual ~WideRows() = default;
+};
+
 struct GradhSettings {
   double hfact, tolerance;
   int max_iterations;
-  NeighView full;                  // the (pruned) full list
-  NeighView fallback;              // LAMMPS' full list, for an h past hlist
-  const double *hlist;             // the largest h each row of full serves (null: any)
-  const double *hcap_type;         // h cap per type
-  const int *collection;           // neighbor multi collection of each atom, or null
-  const double *collection_cut;    // cutoff of each collection
-  double kernel_radius;
+  NeighView full;         // the gather rows
+  const double *hlist;    // the largest h each row of full serves
+  WideRows *wide;         // rows for an h past hlist
+  double h_cap;           // the largest h the ghosts allow
   VelocitySums sums;
   bool pressure_energy;
   double gamma;
-  double h_limit(const Particles &p, int i) const
-  {
-    const double cap = hcap_type[p.type[i]];
-    if (!collection) return cap;
-    const double cut = collection_cut[collection[i]] / kernel_radius;
-    return cut < cap ? cut : cap;
-  }
 };
 struct GradhStatistics {
   double iterations_sum = 0.0;
   int iterations_max = 0, particles = 0, failures = 0, capped = 0;
-  LAMMPS_NS::bigint list_fallbacks = 0;    // atoms whose iteration went past hlist
 };
 void density_gradh(const PassContext &ctx, const GradhSettings &s, GradhStatistics &stats);
 
@@ -113,13 +110,14 @@ struct EntropyArrays {
   double *A, *Aest, *dAdt;
   const double *u;
 };
-void equation_of_state(const PassContext &ctx, const EOS &eos, const double *hcap_type,
+void equation_of_state(const PassContext &ctx, const EOS &eos, double h_cap,
                        bool density_continuity, const EntropyArrays *entropy, bool init_entropy);
 void pressure_energy_density(const PassContext &ctx, const double *energy_sum);
 void thermal_rates(const PassContext &ctx, const EOS &eos, bool omega, bool pdv_done, double *dAdt);
 
-// XSPH drift correction over a full list (mean h): dv_i = eps sum_j m_j/rho_ij (v_j - v_i) W_ij
-void xsph_pass(const PassContext &ctx, const NeighView &full, double eps, double **out);
+// XSPH drift correction over the half list (mean h): out_i = sum_j m_j/rho_ij (v_j - v_i) W_ij
+// (with newton, the ghost rows hold parts of their owners' sums)
+void xsph_pass(const PassContext &ctx, double **out);
 
 }    // namespace SPHAstro
 

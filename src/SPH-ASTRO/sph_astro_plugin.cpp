@@ -22,7 +22,6 @@
 #include "pair_sph_astro.h"
 #include "pair_sph_astro_gravity.h"
 #include "pppm_sph_astro_gravity.h"
-#include "sph_astro_run_command.h"
 #include "sph_astro_state_command.h"
 
 using namespace LAMMPS_NS;
@@ -80,11 +79,6 @@ static Compute *compute_sph_astro_global_creator(LAMMPS *lmp, int narg, char **a
 static Command *state_command_creator(LAMMPS *lmp)
 {
   return new SPHAstroStateCommand(lmp);
-}
-
-static Command *run_command_creator(LAMMPS *lmp)
-{
-  return new SPHAstroRunCommand(lmp);
 }
 
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
@@ -154,10 +148,5 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "sph/astro/state";
   plugin.info = "SPH-ASTRO: define the per-particle state now (before read_data)";
   plugin.creator.v1 = (lammpsplugin_factory1 *) &state_command_creator;
-  (*register_plugin)(&plugin, lmp);
-
-  plugin.name = "sph/astro/run";
-  plugin.info = "SPH-ASTRO: run, repeated when fix sph/astro/h rebuild asks for new list cutoffs";
-  plugin.creator.v1 = (lammpsplugin_factory1 *) &run_command_creator;
   (*register_plugin)(&plugin, lmp);
 }

@@ -45,6 +45,7 @@ Scheme read_scheme(LAMMPS *lmp, const PairOptions &options)
     scheme.tolerance = fix_setting(hfix, "tolerance");
     scheme.max_iterations = static_cast<int>(fix_setting(hfix, "maxiter"));
     scheme.margin = fix_setting(hfix, "margin");
+    scheme.h_max = fix_setting(hfix, "hmax");
   }
 
   auto switches = modify->get_fix_by_style("^sph/astro/switch$");

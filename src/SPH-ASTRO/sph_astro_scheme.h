@@ -12,6 +12,8 @@
 #ifndef LMP_SPH_ASTRO_SCHEME_H
 #define LMP_SPH_ASTRO_SCHEME_H
 
+#include <cmath>
+
 namespace LAMMPS_NS {
 class LAMMPS;
 }
@@ -27,6 +29,7 @@ struct Scheme {
   enum class HMode { FIXED, DHDT, GRADH };
   HMode hmode = HMode::FIXED;
   double hfact = 1.2, tolerance = 1e-4, margin = 1.0;
+  double h_max = INFINITY;    // fix sph/astro/h hmax: no h beyond it
   int max_iterations = 30;
   bool entropy = false;       // fix sph/astro thermal entropy: P = A rho^gamma
   bool has_switch = false;    // fix sph/astro/switch: per-particle alpha (d_alpha)

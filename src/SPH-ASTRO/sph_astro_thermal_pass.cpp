@@ -23,13 +23,12 @@ namespace SPHAstro {
 // (Springel & Hernquist 2002): P = A rho^gamma, u_est = A_est rho^(gamma-1)/(gamma-1), and A
 // from u when init_entropy. Stops with the atom ID on a non-positive or non-finite density, an
 // h beyond its list's cap or a negative or non-finite u.
-void equation_of_state(const PassContext &ctx, const EOS &eos, const double *hcap_type,
+void equation_of_state(const PassContext &ctx, const EOS &eos, double h_cap,
                        bool density_continuity, const EntropyArrays *entropy, bool init_entropy)
 {
   const int nlocal = ctx.p.nlocal;
   const double *rho = ctx.rho;
   const double *h = ctx.p.h;
-  const int *type = ctx.p.type;
   double *uest = ctx.uest;
   Fields &f = *ctx.f;
   if (entropy) {
@@ -45,12 +44,12 @@ void equation_of_state(const PassContext &ctx, const EOS &eos, const double *hca
       ctx.error->one(FLERR, "pair_style sph/astro: atom {} has density {} ({}position not finite?)",
                      ctx.tag[i], rho[i],
                      density_continuity ? "density continuity: too large a timestep? " : "");
-    if (h[i] > hcap_type[type[i]])
+    if (h[i] > h_cap)
       ctx.error->one(FLERR,
-                     "pair_style sph/astro: atom {} has h = {} larger than the h = {} the "
-                     "neighbour lists of its type were built for; h was changed during a run "
-                     "(fix sph/astro/h keeps h below that cap)",
-                     ctx.tag[i], h[i], hcap_type[type[i]]);
+                     "pair_style sph/astro: atom {} has h = {} larger than the h = {} the ghost "
+                     "atoms serve (LAMMPS' ghost cutoff); h was changed during a run (fix "
+                     "sph/astro/h keeps h below that cap and widens the ghost cutoff as h grows)",
+                     ctx.tag[i], h[i], h_cap);
     const double u = uest[i];
     if (eos.uses_energy() && (!(u >= 0.0) || !std::isfinite(u)))
       ctx.error->one(FLERR,

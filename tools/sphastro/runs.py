@@ -62,7 +62,8 @@ def parse_sph_log(path, loops="last"):
     Reads the thermo blocks that have the column ``c_sum[12]`` (compute sph/astro/global's
     relative energy error) and, if present, ``f_hvar[4]`` (fix sph/astro/h: particles at the
     h cap), and the ``Loop time`` lines: ``loops="last"`` takes the last run (scenes with a
-    ``run 0`` before the real one), ``loops="sum"`` adds up all runs (scenes run in segments).
+    ``run 0`` before the real one), ``loops="sum"`` adds up all runs (a ``run 0`` adds no
+    steps; an input may also run in several ``run`` commands).
     Returns a dict; missing items are nan.
     """
     out = {"energy": math.nan, "energy_max": math.nan, "capped": math.nan,

@@ -1,0 +1,184 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
+// The package's neighbour search: a k-d tree over a rank's owned and ghost particles whose
+// nodes know the bounding box of their particles and the largest search radius r_j among them,
+// as the trees of Phantom (Price et al. 2018, PASA 35, e031, sec. 2.1.5) and GADGET (Springel
+// 2005, MNRAS 364, 1105, sec. 3.1) keep h_max per node. A query visits exactly the particles j
+// with
+//     |x_j - c| < max(r_c, r_j) + pad
+// (gather and scatter neighbours of a point c with radius r_c), descending only into nodes
+// whose box lies closer than max(r_c, r_max of the node) + pad (+ how far particles may have
+// moved since the build). The cost of a query follows the number of particles it finds, not
+// the range of r: a particle in a dense clump does not scan the neighbourhood of the largest h.
+//
+// The tree keeps the positions and radii of the build in its own order (contiguous leaves).
+// query_leaf() serves all particles of one leaf at once: one traversal collects the candidates
+// of the leaf's box, and each particle of the leaf then keeps its own from them.
+
+#ifndef LMP_SPH_ASTRO_NEIGHBOUR_TREE_H
+#define LMP_SPH_ASTRO_NEIGHBOUR_TREE_H
+
+#include <algorithm>
+#include <cstddef>
+#include <vector>
+
+namespace SPHAstro {
+
+class NeighbourTree {
+ public:
+  static constexpr int LEAF_SIZE = 32;
+
+  // build over the points index[0..n) of x, with search radii radius[] (per point of x)
+  void build(double **x, const double *radius, const int *index, int n);
+  int size() const { return static_cast<int>(perm_.size()); }
+  int leaves() const { return static_cast<int>(leaves_.size()); }
+  // the points of leaf l: tree positions [begin, end); their indices point(k)
+  int leaf_begin(int l) const { return nodes_[leaves_[l]].begin; }
+  int leaf_end(int l) const { return nodes_[leaves_[l]].end; }
+  int point(int k) const { return perm_[k]; }
+
+  // visit(j, r2) for every point j of the tree with |x_j - c|^2 = r2 < (max(rc, radius_j) +
+  // pad)^2, at the current positions x; motion: how far points may have moved since the build
+  // (0 at the build), so that no node that could hold such a point is skipped
+  template <class VISIT>
+  void query(double **x, const double *radius, const double *c, double rc, double pad,
+             double motion, VISIT &&visit) const
+  {
+    if (nodes_.empty()) return;
+    int stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node &node = nodes_[stack[--top]];
+      const double reach = (rc > node.rmax ? rc : node.rmax) + pad + motion;
+      if (box_point_distance2(node, c) >= reach * reach) continue;
+      if (node.left < 0) {
+        for (int k = node.begin; k < node.end; k++) {
+          const int j = perm_[k];
+          const double dx = x[j][0] - c[0], dy = x[j][1] - c[1], dz = x[j][2] - c[2];
+          const double r2 = dx * dx + dy * dy + dz * dz;
+          const double rj = (rc > radius[j] ? rc : radius[j]) + pad;
+          if (r2 < rj * rj) visit(j, r2);
+        }
+      } else {
+        stack[top++] = node.left + 1;
+        stack[top++] = node.left;
+      }
+    }
+  }
+
+  // every point of leaf l with its neighbours at the build's positions: for each tree
+  // position k of the leaf, row(k, candidates, n) gets the tree positions c of all points with
+  // |x_c - x_k| < max(r_k, r_c) + pad (k itself included), in the order of their point index
+  template <class ROW> void query_leaf(int l, double pad, ROW &&row)
+  {
+    const Node &leaf = nodes_[leaves_[l]];
+    candidates_.clear();
+    int stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node &node = nodes_[stack[--top]];
+      const double reach = (leaf.rmax > node.rmax ? leaf.rmax : node.rmax) + pad;
+      if (box_box_distance2(node, leaf) >= reach * reach) continue;
+      if (node.left < 0) {
+        std::size_t n = candidates_.size();
+        candidates_.resize(n + (node.end - node.begin));
+        for (int c = node.begin; c < node.end; c++) {
+          const double rc = std::max(leaf.rmax, rad_[c]) + pad;
+          candidates_[n] = c;
+          n += box_point_distance2(leaf, &pos_[3 * c]) < rc * rc;
+        }
+        candidates_.resize(n);
+      } else {
+        stack[top++] = node.left + 1;
+        stack[top++] = node.left;
+      }
+    }
+    // by point index: keys (index, tree position) sort without indirection
+    const int nc = static_cast<int>(candidates_.size());
+    keys_.resize(nc);
+    for (int m = 0; m < nc; m++)
+      keys_[m] = (static_cast<unsigned long long>(perm_[candidates_[m]]) << 32) |
+          static_cast<unsigned>(candidates_[m]);
+    std::sort(keys_.begin(), keys_.end());
+    // the candidates' positions and radii side by side for the scans below
+    cand_.resize(4 * static_cast<std::size_t>(nc));
+    found_.resize(nc);
+    int *cand_index = candidates_.data();
+    double *cx = cand_.data(), *cy = cx + nc, *cz = cy + nc, *cr = cz + nc;
+    for (int m = 0; m < nc; m++) {
+      const int c = static_cast<int>(keys_[m] & 0xffffffffULL);
+      cand_index[m] = c;
+      cx[m] = pos_[3 * c];
+      cy[m] = pos_[3 * c + 1];
+      cz[m] = pos_[3 * c + 2];
+      cr[m] = rad_[c];
+    }
+    int *found = found_.data();
+    for (int k = leaf.begin; k < leaf.end; k++) {
+      const double xk = pos_[3 * k], yk = pos_[3 * k + 1], zk = pos_[3 * k + 2], rk = rad_[k];
+      int n = 0;
+      for (int m = 0; m < nc; m++) {
+        const double dx = cx[m] - xk, dy = cy[m] - yk, dz = cz[m] - zk;
+        const double reach = (rk > cr[m] ? rk : cr[m]) + pad;
+        found[n] = cand_index[m];
+        n += dx * dx + dy * dy + dz * dz < reach * reach;
+      }
+      row(k, found, n);
+    }
+  }
+
+  double memory_usage() const
+  {
+    return static_cast<double>(
+        nodes_.capacity() * sizeof(Node) +
+        (perm_.capacity() + leaves_.capacity() + candidates_.capacity() + found_.capacity()) *
+            sizeof(int) +
+        (pos_.capacity() + rad_.capacity() + keys_.capacity() + cand_.capacity()) * sizeof(double));
+  }
+
+ private:
+  struct Node {
+    double lo[3], hi[3];
+    double rmax;
+    int begin, end;    // points perm_[begin..end)
+    int left;          // children left, left + 1; -1: leaf
+  };
+  std::vector<Node> nodes_;
+  std::vector<int> perm_, leaves_, candidates_, found_;
+  std::vector<double> pos_, rad_;    // positions and radii at the build, in tree order
+  std::vector<unsigned long long> keys_;
+  std::vector<double> cand_;    // x, y, z, r of a leaf's candidates
+
+  void make_node(double **x, const double *radius, int id, int begin, int end);
+
+  // (branch-free: the comparisons of a traversal are unpredictable)
+  static double box_point_distance2(const Node &node, const double *c)
+  {
+    double d2 = 0.0;
+    for (int d = 0; d < 3; d++) {
+      const double gap = std::max(std::max(node.lo[d] - c[d], c[d] - node.hi[d]), 0.0);
+      d2 += gap * gap;
+    }
+    return d2;
+  }
+  static double box_box_distance2(const Node &a, const Node &b)
+  {
+    double d2 = 0.0;
+    for (int d = 0; d < 3; d++) {
+      const double gap = std::max(std::max(a.lo[d] - b.hi[d], b.lo[d] - a.hi[d]), 0.0);
+      d2 += gap * gap;
+    }
+    return d2;
+  }
+};
+
+}    // namespace SPHAstro
+
+#endif

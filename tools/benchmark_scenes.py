@@ -1,0 +1,198 @@
+#!/usr/bin/python3
+# SPH-ASTRO - astrophysical SPH for LAMMPS. Distributed under the GNU General Public License
+# version 2 (the same licence as LAMMPS); see the LICENSE file.
+"""Cost of SPH-ASTRO on a uniform box and on astrophysical scenes, side by side in one script
+(and SWIFT's Sedov runs, when a SWIFT build is given), as a table.
+
+Usage (from the repository root; ``source build/env.sh`` first or it is sourced for you)::
+
+    /usr/bin/python3 tools/benchmark_scenes.py [--np 2] [--rows box1e4,box1e5,...]
+        [--swift-bin PATH --swift-dir DIR] [--outdir build/output/benchmark_scenes]
+
+Rows (``--rows``, default all): ``box1e4``, ``box1e5``, ``box1e6`` (examples/benchmark, a
+uniform periodic box, fixed dt, 40/20/5 steps), ``sedov16``, ``sedov22``, ``sedov35``
+(examples/sedov to t = 0.1), ``noh24`` (examples/noh to t = 0.6), ``evrard`` (examples/evrard,
+n 16, MSM gravity, to t = 0.8), and ``swift35`` and ``swift56``: SWIFT's Sedov at 42 875 and
+175 616 particles (``--swift-bin``: the swift executable, built with SPHENIX and the cubic
+spline as its repository describes; ``--swift-dir``: a folder with ``swift_sedov.yml`` and
+``swift_sedov_ic.py ``; 2 threads, ``--hydro --limiter``). SWIFT is never part of this
+repository or of its tests; its rows are skipped when it is absent.
+
+Each SPH-ASTRO row runs ``mpirun -np NP /usr/bin/time -f %M lmp ...`` and prints
+
+* N, ranks, wall (s, the whole process), loop (s, LAMMPS' loop times summed over the input's
+  runs), steps, updates (N x steps, millions);
+* Mps/s/core: million particle-steps per second per core; us.core/ps: core-microseconds per
+  particle-step; x box: that cost over the uniform box of ~1e5 particles (same kernel and
+  hfact: about 58 neighbours inside the M4 support);
+* half, rows, kern: entries per particle of the half list and of the gather rows of the h
+  iteration, and neighbours inside the kernel support (the pair's end-of-run line);
+  ghosts: ghost atoms per particle;
+* RSS MB: peak resident memory summed over the ranks; B/part: (RSS - the ranks' RSS for a
+  32-particle box, the fixed cost of an lmp process) / N.
+
+SWIFT rows give wall, steps (its step count), updates (particle updates, summed over steps),
+particle updates per second per thread, and its peak RSS. The table goes to stdout and to
+OUTDIR/benchmark_scenes.txt; logs to OUTDIR/<row>/.
+"""
+
+import argparse
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+
+ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir))
+sys.path.insert(0, os.path.join(ROOT, "tools"))
+from sphastro.runs import lammps_environment, provenance  # noqa: E402
+
+EX = os.path.join(ROOT, "examples")
+SCENES = {
+    "fixed": ("benchmark/in.benchmark", {"ncell": 2, "steps": 1}),
+    "box1e4": ("benchmark/in.benchmark", {"ncell": 14, "steps": 40}),
+    "box1e5": ("benchmark/in.benchmark", {"ncell": 29, "steps": 20}),
+    "box1e6": ("benchmark/in.benchmark", {"ncell": 63, "steps": 5}),
+    "sedov16": ("sedov/in.sedov", {"n": 16, "thermoevery": 100}),
+    "sedov22": ("sedov/in.sedov", {"n": 22, "thermoevery": 100}),
+    "sedov35": ("sedov/in.sedov", {"n": 35, "thermoevery": 100}),
+    "noh24": ("noh/in.noh", {"n": 24, "thermoevery": 100}),
+    "evrard": ("evrard/in.evrard", {"n": 16, "gravity": "msm", "tend": 0.8,
+                                    "thermoevery": 100}),
+}
+SWIFT_ROWS = {"swift35": 35, "swift56": 56}
+ORDER = ["box1e4", "box1e5", "box1e6", "sedov16", "sedov22", "sedov35", "noh24", "evrard",
+         "swift35", "swift56"]
+
+_LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", re.M)
+_SEARCH = re.compile(r"pair sph/astro neighbour search: .*?per particle: (\S+) half-list "
+                     r"entries, (\S+) gather-row entries, (\S+) neighbours inside the kernel "
+                     r"support, (\S+) ghost atoms", re.S)
+_RSS = re.compile(r"^SPHASTRO_RSS_KB (\d+)$", re.M)
+
+
+def run_lammps(name, np_ranks, outdir, env):
+    script, variables = SCENES[name]
+    work = os.path.join(outdir, name)
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    cmd = ["mpirun", "--oversubscribe", "-np", str(np_ranks), "/usr/bin/time", "-f",
+           "SPHASTRO_RSS_KB %M", "lmp", "-in", os.path.join(EX, script), "-log", "log.lammps",
+           "-screen", "none"]
+    if np_ranks == 1:
+        cmd = cmd[4:]
+    for key, value in variables.items():
+        cmd += ["-var", key, str(value)]
+    start = time.time()
+    proc = subprocess.run(cmd, cwd=work, env=env, capture_output=True, text=True)
+    wall = time.time() - start
+    with open(os.path.join(work, "stderr.txt"), "w") as f:
+        f.write(proc.stderr)
+    if proc.returncode != 0:
+        raise RuntimeError(f"{name}: lmp failed (exit {proc.returncode}); see {work}")
+    with open(os.path.join(work, "log.lammps"), encoding="utf-8", errors="replace") as f:
+        log = f.read()
+    loops = _LOOP.findall(log)
+    rss = [int(v) for v in _RSS.findall(proc.stderr)]
+    row = {"name": name, "ranks": np_ranks, "wall": wall,
+           "loop": sum(float(l[0]) for l in loops), "steps": sum(int(l[2]) for l in loops),
+           "N": int(loops[-1][3]) if loops else 0, "rss_mb": sum(rss) / 1024.0}
+    # particle updates: the atoms of each run times its steps (run 0 adds none)
+    row["updates"] = sum(int(l[2]) * int(l[3]) for l in loops)
+    found = _SEARCH.findall(log)
+    row["half"], row["rows"], row["kern"], row["ghosts"] = (
+        [float(v) for v in found[-1]] if found else [float("nan")] * 4)
+    return row
+
+
+def run_swift(name, n, outdir, swift_bin, swift_dir):
+    work = os.path.join(outdir, name)
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    ic = os.path.join(work, f"sedov_n{n}.hdf5")
+    subprocess.run(["/usr/bin/python3", os.path.join(swift_dir, "swift_sedov_ic.py"), str(n), ic],
+                   cwd=work, check=True, capture_output=True)
+    cmd = ["/usr/bin/time", "-f", "SPHASTRO_RSS_KB %M", swift_bin, "--hydro", "--limiter",
+           "--threads=2", "-P", f"InitialConditions:file_name:{ic}",
+           os.path.join(swift_dir, "swift_sedov.yml")]
+    start = time.time()
+    proc = subprocess.run(cmd, cwd=work, capture_output=True, text=True)
+    wall = time.time() - start
+    with open(os.path.join(work, "stdout.txt"), "w") as f:
+        f.write(proc.stdout)
+    if proc.returncode != 0:
+        raise RuntimeError(f"{name}: swift failed (exit {proc.returncode}); see {work}")
+    steps = updates = 0
+    with open(os.path.join(work, "timesteps.txt")) as f:
+        for line in f:
+            cols = line.split()
+            if line.startswith("#") or len(cols) < 8:
+                continue
+            steps = int(cols[0])
+            if steps > 0:
+                updates += int(cols[7])
+    rss = [int(v) for v in _RSS.findall(proc.stderr)]
+    return {"name": name, "ranks": 2, "wall": wall, "loop": wall, "steps": steps, "N": n ** 3,
+            "updates": updates, "rss_mb": sum(rss) / 1024.0, "half": float("nan"),
+            "rows": float("nan"), "kern": float("nan"), "ghosts": float("nan"), "swift": True}
+
+
+def table(rows, fixed_mb):
+    box = next((r for r in rows if r["name"] == "box1e5"), None)
+    box_cost = box["loop"] * box["ranks"] / box["updates"] * 1e6 if box else None
+    head = (f"{'row':<9} {'N':>9} {'ranks':>5} {'wall s':>8} {'loop s':>8} {'steps':>6} "
+            f"{'upd M':>7} {'Mps/s/c':>8} {'us.c/ps':>8} {'x box':>6} {'half':>6} {'rows':>6} "
+            f"{'kern':>6} {'ghosts':>6} {'RSS MB':>8} {'B/part':>7}")
+    out = [head, "-" * len(head)]
+    for r in rows:
+        cost = r["loop"] * r["ranks"] / max(r["updates"], 1) * 1e6
+        mps = r["updates"] / (r["loop"] * r["ranks"]) / 1e6
+        ratio = f"{cost / box_cost:6.2f}" if box_cost and not r.get("swift") else f"{'':>6}"
+        per = (r["rss_mb"] - fixed_mb * r["ranks"]) * 1048576.0 / r["N"] if not r.get(
+            "swift") else r["rss_mb"] * 1048576.0 / r["N"]
+        out.append(f"{r['name']:<9} {r['N']:>9} {r['ranks']:>5} {r['wall']:>8.1f} "
+                   f"{r['loop']:>8.1f} {r['steps']:>6} {r['updates'] / 1e6:>7.2f} {mps:>8.3f} "
+                   f"{cost:>8.2f} {ratio} {r['half']:>6.1f} {r['rows']:>6.1f} {r['kern']:>6.1f} "
+                   f"{r['ghosts']:>6.2f} {r['rss_mb']:>8.1f} {per:>7.0f}")
+    out.append(f"fixed cost of an lmp process (32-particle box): {fixed_mb:.1f} MB per rank; "
+               "SWIFT rows: B/part is its whole RSS per particle, 'ranks' its threads")
+    return "\n".join(out)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--np", type=int, default=2, help="MPI ranks (default 2)")
+    parser.add_argument("--rows", default=",".join(ORDER))
+    parser.add_argument("--swift-bin", default=os.environ.get("SPH_ASTRO_SWIFT_BIN", ""))
+    parser.add_argument("--swift-dir", default=os.environ.get("SPH_ASTRO_SWIFT_DIR", ""))
+    parser.add_argument("--outdir", default=os.path.join(ROOT, "build", "output",
+                                                         "benchmark_scenes"))
+    args = parser.parse_args()
+    env = lammps_environment()
+    os.makedirs(args.outdir, exist_ok=True)
+    wanted = [r for r in args.rows.split(",") if r]
+    for r in wanted:
+        if r not in SCENES and r not in SWIFT_ROWS:
+            parser.error(f"unknown row '{r}'; allowed: {', '.join(ORDER)}")
+    fixed = run_lammps("fixed", 1, args.outdir, env)
+    rows = []
+    for name in wanted:
+        if name in SWIFT_ROWS:
+            if not (os.path.isfile(args.swift_bin) and os.path.isdir(args.swift_dir)):
+                print(f"{name}: skipped (no --swift-bin/--swift-dir)", flush=True)
+                continue
+            row = run_swift(name, SWIFT_ROWS[name], args.outdir, args.swift_bin, args.swift_dir)
+        else:
+            row = run_lammps(name, args.np, args.outdir, env)
+        rows.append(row)
+        print(f"{name}: N {row['N']}, wall {row['wall']:.1f} s, {row['steps']} steps, "
+              f"RSS {row['rss_mb']:.0f} MB", flush=True)
+    text = provenance() + "\n" + table(rows, fixed["rss_mb"])
+    print(text)
+    with open(os.path.join(args.outdir, "benchmark_scenes.txt"), "w") as f:
+        f.write(text + "\n")
+
+
+if __name__ == "__main__":
+    main()

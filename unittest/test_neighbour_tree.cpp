@@ -1,0 +1,158 @@
+/* ----------------------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
+// The neighbour tree (sph_astro_neighbour_tree.h) against brute force: every point with
+// |x_j - c| < max(r_c, r_j) + pad, gather and scatter, with radii spread over two decades,
+// points on a line and on a plane, coincident points, and points moved after the build.
+
+#include "sph_astro_neighbour_tree.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+using SPHAstro::NeighbourTree;
+
+namespace {
+
+struct Cloud {
+  std::vector<double> coords, radius;
+  std::vector<double *> x;
+  std::vector<int> index;
+  explicit Cloud(int n) : coords(3 * n), radius(n), x(n), index(n)
+  {
+    for (int i = 0; i < n; i++) {
+      x[i] = &coords[3 * i];
+      index[i] = i;
+    }
+  }
+};
+
+// shape 0: a clump in a tenuous cube (radius ~ local spacing); 1: a line; 2: a plane;
+// 3: points on a coarse grid (many coincident coordinates and points)
+Cloud make_cloud(int shape, int n, unsigned seed)
+{
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Cloud c(n);
+  for (int i = 0; i < n; i++) {
+    double *p = c.x[i];
+    const bool clump = shape == 0 && i < n / 2;
+    for (int d = 0; d < 3; d++) p[d] = clump ? 0.4 + 0.05 * u(gen) : u(gen);
+    if (shape == 1) p[1] = p[2] = 0.5;
+    if (shape == 2) p[2] = 0.25;
+    if (shape == 3)
+      for (int d = 0; d < 3; d++) p[d] = 0.125 * std::floor(8.0 * p[d]);
+    c.radius[i] = clump ? 0.01 * (1.0 + u(gen)) : 0.1 * (0.5 + u(gen));
+  }
+  return c;
+}
+
+std::vector<int> brute_force(const Cloud &c, const double *centre, double rc, double pad)
+{
+  std::vector<int> found;
+  for (int j : c.index) {
+    double r2 = 0.0;
+    for (int d = 0; d < 3; d++) r2 += (c.x[j][d] - centre[d]) * (c.x[j][d] - centre[d]);
+    const double reach = std::max(rc, c.radius[j]) + pad;
+    if (r2 < reach * reach) found.push_back(j);
+  }
+  return found;
+}
+
+std::vector<int> tree_query(const NeighbourTree &tree, Cloud &c, const double *centre, double rc,
+                            double pad, double motion)
+{
+  std::vector<int> found;
+  tree.query(c.x.data(), c.radius.data(), centre, rc, pad, motion, [&](int j, double r2) {
+    double expect = 0.0;
+    for (int d = 0; d < 3; d++) expect += (c.x[j][d] - centre[d]) * (c.x[j][d] - centre[d]);
+    EXPECT_DOUBLE_EQ(r2, expect);
+    found.push_back(j);
+  });
+  std::sort(found.begin(), found.end());
+  return found;
+}
+
+}    // namespace
+
+TEST(NeighbourTree, FindsExactlyTheGatherAndScatterNeighbours)
+{
+  for (int shape = 0; shape < 4; shape++) {
+    Cloud c = make_cloud(shape, 3000, 17u + shape);
+    NeighbourTree tree;
+    tree.build(c.x.data(), c.radius.data(), c.index.data(), static_cast<int>(c.index.size()));
+    ASSERT_EQ(tree.size(), 3000);
+    std::size_t total = 0;
+    for (int i = 0; i < 3000; i += 7) {
+      for (double pad : {0.0, 0.02}) {
+        const auto expect = brute_force(c, c.x[i], c.radius[i], pad);
+        const auto got = tree_query(tree, c, c.x[i], c.radius[i], pad, 0.0);
+        ASSERT_EQ(got, expect) << "shape " << shape << ", point " << i << ", pad " << pad;
+        total += got.size();
+      }
+    }
+    EXPECT_GT(total, 3000u) << "shape " << shape;
+  }
+}
+
+// points moved after the build by up to 'motion': queries at the current positions still find
+// every neighbour when told how far points may have moved
+TEST(NeighbourTree, FindsNeighboursOfMovedPointsWithinTheMotionBound)
+{
+  Cloud c = make_cloud(0, 2000, 99u);
+  NeighbourTree tree;
+  tree.build(c.x.data(), c.radius.data(), c.index.data(), 2000);
+  std::mt19937 gen(5u);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double motion = 0.03;
+  for (double &v : c.coords) v += motion / std::sqrt(3.0) * u(gen);
+  int differs = 0;
+  for (int i = 0; i < 2000; i += 5) {
+    const auto expect = brute_force(c, c.x[i], c.radius[i], 0.0);
+    ASSERT_EQ(tree_query(tree, c, c.x[i], c.radius[i], 0.0, motion), expect) << "point " << i;
+    differs += tree_query(tree, c, c.x[i], c.radius[i], 0.0, 0.0) != expect;
+  }
+  // without the bound some queries miss points (the test can fail)
+  EXPECT_GT(differs, 0);
+}
+
+TEST(NeighbourTree, EmptyAndSinglePointTrees)
+{
+  Cloud c = make_cloud(0, 1, 1u);
+  NeighbourTree tree;
+  tree.build(c.x.data(), c.radius.data(), c.index.data(), 0);
+  const double centre[3] = {0.5, 0.5, 0.5};
+  EXPECT_TRUE(tree_query(tree, c, centre, 10.0, 0.0, 0.0).empty());
+  tree.build(c.x.data(), c.radius.data(), c.index.data(), 1);
+  EXPECT_EQ(tree_query(tree, c, c.x[0], 0.0, 0.0, 0.0).size(), 1u);
+}
+
+// the leaf form gives every point of every leaf the same neighbours as its own query
+TEST(NeighbourTree, LeafQueriesFindWhatPointQueriesFind)
+{
+  for (int shape = 0; shape < 4; shape++) {
+    Cloud c = make_cloud(shape, 2000, 31u + shape);
+    NeighbourTree tree;
+    tree.build(c.x.data(), c.radius.data(), c.index.data(), 2000);
+    int served = 0;
+    for (int l = 0; l < tree.leaves(); l++)
+      tree.query_leaf(l, 0.01, [&](int k, const int *found, int n) {
+        const int i = tree.point(k);
+        std::vector<int> got;
+        for (int m = 0; m < n; m++) got.push_back(tree.point(found[m]));
+        std::sort(got.begin(), got.end());
+        ASSERT_EQ(got, brute_force(c, c.x[i], c.radius[i], 0.01))
+            << "shape " << shape << ", point " << i;
+        served++;
+      });
+    EXPECT_EQ(served, 2000) << "shape " << shape;
+  }
+}
