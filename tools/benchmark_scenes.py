@@ -10,7 +10,8 @@ Usage (from the repository root; ``source build/env.sh`` first or it is sourced 
         [--swift-bin PATH --swift-dir DIR] [--outdir build/output/benchmark_scenes]
 
 Rows (``--rows``, default all): ``box1e4``, ``box1e5``, ``box1e6`` (examples/benchmark, a
-uniform periodic box, fixed dt, 40/20/5 steps), ``sedov16``, ``sedov22``, ``sedov35``
+uniform periodic box, fixed h and dt, 40/20/5 steps), ``box1e5i`` (the same box as the scenes
+run: the h iteration with grad-h terms, skin 0.5 h), ``sedov16``, ``sedov22``, ``sedov35``
 (examples/sedov to t = 0.1), ``noh24`` (examples/noh to t = 0.6), ``evrard`` (examples/evrard,
 n 16, MSM gravity, to t = 0.8), and ``swift35`` and ``swift56``: SWIFT's Sedov at 42 875 and
 175 616 particles (``--swift-bin``: the swift executable, built with SPHENIX and the cubic
@@ -29,7 +30,7 @@ Each SPH-ASTRO row runs ``mpirun -np NP /usr/bin/time -f %M lmp ...`` and prints
   iteration, and neighbours inside the kernel support (the pair's end-of-run line);
   ghosts: ghost atoms per particle;
 * RSS MB: peak resident memory summed over the ranks; B/part: (RSS - the ranks' RSS for a
-  32-particle box, the fixed cost of an lmp process) / N.
+  32-particle box on as many ranks, the fixed cost of the lmp processes) / N.
 
 SWIFT rows give wall, steps (its step count), updates (particle updates, summed over steps),
 particle updates per second per thread, and its peak RSS. The table goes to stdout and to
@@ -54,6 +55,9 @@ SCENES = {
     "box1e4": ("benchmark/in.benchmark", {"ncell": 14, "steps": 40}),
     "box1e5": ("benchmark/in.benchmark", {"ncell": 29, "steps": 20}),
     "box1e6": ("benchmark/in.benchmark", {"ncell": 63, "steps": 5}),
+    # the box as the scenes run it: h iteration and grad-h terms, Sedov's skin of 0.5 h
+    "box1e5i": ("benchmark/in.benchmark", {"ncell": 29, "steps": 60, "hmode": "iterate",
+                                           "skinfrac": 0.5}),
     "sedov16": ("sedov/in.sedov", {"n": 16, "thermoevery": 100}),
     "sedov22": ("sedov/in.sedov", {"n": 22, "thermoevery": 100}),
     "sedov35": ("sedov/in.sedov", {"n": 35, "thermoevery": 100}),
@@ -62,14 +66,14 @@ SCENES = {
                                     "thermoevery": 100}),
 }
 SWIFT_ROWS = {"swift35": 35, "swift56": 56}
-ORDER = ["box1e4", "box1e5", "box1e6", "sedov16", "sedov22", "sedov35", "noh24", "evrard",
+ORDER = ["box1e4", "box1e5", "box1e6", "box1e5i", "sedov16", "sedov22", "sedov35", "noh24", "evrard",
          "swift35", "swift56"]
 
 _LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", re.M)
 _SEARCH = re.compile(r"pair sph/astro neighbour search: .*?per particle: (\S+) half-list "
                      r"entries, (\S+) gather-row entries, (\S+) neighbours inside the kernel "
                      r"support, (\S+) ghost atoms", re.S)
-_RSS = re.compile(r"^SPHASTRO_RSS_KB (\d+)$", re.M)
+_RSS = re.compile(r"RSS_KB (\d+)")    # (the ranks' lines may interleave)
 
 
 def run_lammps(name, np_ranks, outdir, env):
@@ -139,7 +143,8 @@ def run_swift(name, n, outdir, swift_bin, swift_dir):
 
 
 def table(rows, fixed_mb):
-    box = next((r for r in rows if r["name"] == "box1e5"), None)
+    box = next((r for r in rows if r["name"] == "box1e5i"),
+               next((r for r in rows if r["name"] == "box1e5"), None))
     box_cost = box["loop"] * box["ranks"] / box["updates"] * 1e6 if box else None
     head = (f"{'row':<9} {'N':>9} {'ranks':>5} {'wall s':>8} {'loop s':>8} {'steps':>6} "
             f"{'upd M':>7} {'Mps/s/c':>8} {'us.c/ps':>8} {'x box':>6} {'half':>6} {'rows':>6} "
@@ -149,13 +154,13 @@ def table(rows, fixed_mb):
         cost = r["loop"] * r["ranks"] / max(r["updates"], 1) * 1e6
         mps = r["updates"] / (r["loop"] * r["ranks"]) / 1e6
         ratio = f"{cost / box_cost:6.2f}" if box_cost and not r.get("swift") else f"{'':>6}"
-        per = (r["rss_mb"] - fixed_mb * r["ranks"]) * 1048576.0 / r["N"] if not r.get(
+        per = (r["rss_mb"] - fixed_mb) * 1048576.0 / r["N"] if not r.get(
             "swift") else r["rss_mb"] * 1048576.0 / r["N"]
         out.append(f"{r['name']:<9} {r['N']:>9} {r['ranks']:>5} {r['wall']:>8.1f} "
                    f"{r['loop']:>8.1f} {r['steps']:>6} {r['updates'] / 1e6:>7.2f} {mps:>8.3f} "
                    f"{cost:>8.2f} {ratio} {r['half']:>6.1f} {r['rows']:>6.1f} {r['kern']:>6.1f} "
                    f"{r['ghosts']:>6.2f} {r['rss_mb']:>8.1f} {per:>7.0f}")
-    out.append(f"fixed cost of an lmp process (32-particle box): {fixed_mb:.1f} MB per rank; "
+    out.append(f"fixed cost of the lmp processes (32-particle box): {fixed_mb:.1f} MB; "
                "SWIFT rows: B/part is its whole RSS per particle, 'ranks' its threads")
     return "\n".join(out)
 
@@ -175,7 +180,7 @@ def main():
     for r in wanted:
         if r not in SCENES and r not in SWIFT_ROWS:
             parser.error(f"unknown row '{r}'; allowed: {', '.join(ORDER)}")
-    fixed = run_lammps("fixed", 1, args.outdir, env)
+    fixed = run_lammps("fixed", args.np, args.outdir, env)
     rows = []
     for name in wanted:
         if name in SWIFT_ROWS:
@@ -188,7 +193,8 @@ def main():
         rows.append(row)
         print(f"{name}: N {row['N']}, wall {row['wall']:.1f} s, {row['steps']} steps, "
               f"RSS {row['rss_mb']:.0f} MB", flush=True)
-    text = provenance() + "\n" + table(rows, fixed["rss_mb"])
+    text = provenance(os.path.join(args.outdir, "fixed", "log.lammps")) + "\n" + table(
+        rows, fixed["rss_mb"])
     print(text)
     with open(os.path.join(args.outdir, "benchmark_scenes.txt"), "w") as f:
         f.write(text + "\n")

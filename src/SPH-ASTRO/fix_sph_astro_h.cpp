@@ -176,6 +176,15 @@ void FixSPHAstroH::init()
 void FixSPHAstroH::setup(int /*vflag*/)
 {
   check_limits();
+  // particles held at the cap by the setup's iteration keep that h for one step
+  int capped_local = pair_->h_statistics().capped, capped;
+  MPI_Allreduce(&capped_local, &capped, 1, MPI_INT, MPI_SUM, world);
+  if (capped > 0 && pair_->h_cap() < h_max_ && comm->me == 0)
+    error->warning(FLERR,
+                   "fix sph/astro/h: {} particles need h beyond the cap {:.6g} at the setup of "
+                   "step {}; they keep the cap for one step, until the ghost cutoff is widened "
+                   "(a larger margin, now {}, avoids this)",
+                   capped, pair_->h_cap(), update->ntimestep, margin_);
 }
 
 void FixSPHAstroH::end_of_step()

@@ -98,19 +98,18 @@ void NeighbourLists::build(const double *h, double pad)
   const int nall = nlocal + atom->nghost;
   const SearchSettings &s = settings_;
   const double R = s.kernel_radius;
+  // (rows for the owned atoms only; h limits and radii for the ghosts too)
   if (static_cast<int>(hl_.size()) < atom->nmax) {
     hl_.resize(atom->nmax);
     radius_.resize(atom->nmax);
-    half_.numneigh.resize(atom->nmax);
-    half_.firstneigh.resize(atom->nmax);
-    if (s.full) {
-      full_.numneigh.resize(atom->nmax);
-      full_.firstneigh.resize(atom->nmax);
-    }
   }
-  if (s.full && static_cast<int>(full_.numneigh.size()) < atom->nmax) {
-    full_.numneigh.resize(atom->nmax);
-    full_.firstneigh.resize(atom->nmax);
+  if (static_cast<int>(half_.numneigh.size()) < nlocal) {
+    half_.numneigh.resize(nlocal);
+    half_.firstneigh.resize(nlocal);
+  }
+  if (s.full && static_cast<int>(full_.numneigh.size()) < nlocal) {
+    full_.numneigh.resize(nlocal);
+    full_.firstneigh.resize(nlocal);
   }
   members_.clear();
   ilist_.clear();
