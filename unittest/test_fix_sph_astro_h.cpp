@@ -409,6 +409,26 @@ TEST(NeighbourSearch, AnHBeyondTheListLimitIsServedInTheStep)
   EXPECT_LT(rho_error, 1e-12);
 }
 
+// h set ten times larger between runs (with LAMMPS' lists this overran their pages inside the
+// neighbour build): the next run's ghost cutoff and lists follow it; every density is the sum
+// over all particles, and the h iteration brings h back
+TEST(NeighbourSearch, HRaisedTenfoldBetweenRunsIsServed)
+{
+  auto lmp = open_lammps();
+  gas(lmp, "ball", 6, PAIR, "sph/astro courant 0.3", 1.0, 0.04);
+  commands(lmp, {"fix hvar all sph/astro/h iterate", "run 3",
+                 "set group all d_h " + num(10.0 * 1.2 * std::cbrt(0.25)), "run 0"});
+  const double rho_error = worst_relative(density_by_brute_force(lmp), per_atom(lmp, "rho"));
+  double hmin, hmax;
+  const double worst = worst_h_error(lmp, hmin, hmax);
+  printf("h x 10 between runs: worst density against brute force %.2e, h %.3g..%.3g, worst h "
+         "error %.2e\n",
+         rho_error, hmin, hmax, worst);
+  EXPECT_LT(rho_error, 1e-12);
+  EXPECT_LT(worst, 1e-3);
+  EXPECT_LT(hmax, 3.0 * 1.2 * std::cbrt(0.25));
+}
+
 TEST(FixSPHAstroH, DhdtFollowsTheDivergence)
 {
   // uniform expansion v = H x in a ball: div v = 3 H, so h grows as exp(H t)
