@@ -416,8 +416,9 @@ TEST(NeighbourSearch, HRaisedTenfoldBetweenRunsIsServed)
 {
   auto lmp = open_lammps();
   gas(lmp, "ball", 6, PAIR, "sph/astro courant 0.3", 1.0, 0.04);
-  commands(lmp, {"fix hvar all sph/astro/h iterate", "run 3",
-                 "set group all d_h " + num(10.0 * 1.2 * std::cbrt(0.25)), "run 0"});
+  commands(lmp,
+           {"fix hvar all sph/astro/h iterate", "run 3",
+            "set group all d_h " + num(10.0 * 1.2 * std::cbrt(0.25)), "run 0"});
   const double rho_error = worst_relative(density_by_brute_force(lmp), per_atom(lmp, "rho"));
   double hmin, hmax;
   const double worst = worst_h_error(lmp, hmin, hmax);
