@@ -475,6 +475,13 @@ TEST_F(BadInput, FixArguments)
   expect_error("fix gas all sph/astro courant", "Illegal fix sph/astro courant");
 }
 
+TEST_F(BadInput, RunStyleRespaIsRefused)
+{
+  valid_setup();
+  commands(lmp, {"run_style respa 2 2"});
+  expect_error("run 1", "fix sph/astro: run_style respa is not supported; use run_style verlet");
+}
+
 TEST_F(BadInput, SmoothingLengthFixArguments)
 {
   expect_error("fix hvar all sph/astro/h iterate margin 0.9", "margin = 0.9 must be >= 1");

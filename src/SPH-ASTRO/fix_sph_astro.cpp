@@ -225,6 +225,11 @@ void FixSPHAstro::init()
                update->unit_style, force->ftm2v);
   if (!find_state(lmp, *state_))
     error->all(FLERR, "fix sph/astro: the per-particle state fix {} is missing", STATE_FIX_ID);
+  // the kick-drift-kick steps of this fix are written for run_style verlet (respa would call
+  // none of them on the outer levels: nothing would move)
+  if (!utils::strmatch(update->integrate_style, "^verlet"))
+    error->all(FLERR, "fix sph/astro: run_style {} is not supported; use run_style verlet",
+               update->integrate_style);
   evolve_u_ = pair_->options().eos.uses_energy();
   if (entropy_) {
     if (pair_->options().eos.type != EOSType::IDEAL)
