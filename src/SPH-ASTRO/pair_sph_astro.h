@@ -104,9 +104,8 @@ class PairSPHAstro : public Pair {
 
   // neighbour search (sph_astro_neighbour_lists.h). h_cap: the largest h any particle may
   // take, (ghost cutoff - skin) / kernel radius; a run starts with the ghost cutoff at
-  // kernel radius x h_cap_start + skin
+  // kernel radius x margin x the largest h + skin
   double h_cap() const { return h_cap_; }
-  double h_cap_start() const { return h_cap_start_; }
   double kernel_radius() const { return kernel_radius_; }
   // the largest h atom i (owned or ghost) may take before its lists are made again; fix
   // sph/astro/h has LAMMPS reneighbour when LIST_REBUILD h_i exceeds it

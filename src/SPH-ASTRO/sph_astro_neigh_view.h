@@ -7,32 +7,24 @@
 
 // What the passes of pair sph/astro read of a neighbour list (NeighView), and LAMMPS' rule for
 // which of a pair's two entries a half list keeps (HalfFromFull), shared by the package's own
-// lists (sph_astro_neighbour_lists.h) and the lists of LAMMPS that fix sph/astro's XSPH uses.
+// lists (sph_astro_neighbour_lists.h) and the passes (sph_astro_pair_loop.h).
 
 #ifndef LMP_SPH_ASTRO_NEIGH_VIEW_H
 #define LMP_SPH_ASTRO_NEIGH_VIEW_H
 
 #include "lmptype.h"
-#include "neigh_list.h"
 
 #include <cmath>
-#include <cstddef>
-#include <vector>
 
 namespace SPHAstro {
 
-// the fields of a LAMMPS neighbour list that the pair passes read
+// the fields of a neighbour list (in LAMMPS' layout) that the pair passes read
 struct NeighView {
   int inum;
   const int *ilist;
   const int *numneigh;
   int *const *firstneigh;
 };
-
-inline NeighView view_of(const LAMMPS_NS::NeighList *list)
-{
-  return {list->inum, list->ilist, list->numneigh, list->firstneigh};
-}
 
 // the rule by which LAMMPS derives a half list from a full one (npair_halffull.cpp), so that
 // each pair is summed once on one rank and ghost pairs agree between ranks:
