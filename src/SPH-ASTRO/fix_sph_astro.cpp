@@ -33,14 +33,17 @@
 #include "domain.h"
 #include "error.h"
 #include "force.h"
+#include "group.h"
 #include "memory.h"
 #include "modify.h"
 #include "neighbor.h"
 #include "output.h"
 #include "sph_astro_conduction.h"
+#include "sph_astro_individual_steps.h"
 #include "sph_astro_options.h"
 #include "sph_astro_passes.h"
 #include "sph_astro_state.h"
+#include "sph_astro_time_bins.h"
 #include "sph_astro_timestep.h"
 #include "timer.h"
 #include "update.h"
@@ -53,6 +56,10 @@
 using namespace LAMMPS_NS;
 using namespace FixConst;
 using namespace SPHAstro;
+
+// the reference-energy count of a restart record is raised by this when an individual-step
+// block follows
+static constexpr double STEP_BLOCK = 1 << 20;
 
 FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), state_(new StateIndex()), entropy_index_(new EntropyIndex()),
@@ -88,6 +95,9 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
   last_dt_energy_ = 0.0;
   last_dt_cond_ = 0.0;
   last_limiting_atom_ = 0;
+  steps_ = nullptr;
+  limiter_levels_ = 2;
+  bool individual = false;
 
   time_integrate = 1;
   restart_global = 1;
@@ -146,6 +156,24 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
     } else if (key == "tend") {
       tend_ = utils::numeric(FLERR, val, false, lmp);
       if (!(tend_ > 0.0)) error->all(FLERR, "fix sph/astro: tend = {} must be > 0", val);
+    } else if (key == "steps") {
+      if (strcmp(val, "global") == 0)
+        individual = false;
+      else if (strcmp(val, "individual") == 0)
+        individual = true;
+      else
+        error->all(FLERR, "fix sph/astro: steps '{}' is not one of: global, individual", val);
+    } else if (key == "limiter") {
+      if (strcmp(val, "off") == 0)
+        limiter_levels_ = 0;
+      else {
+        limiter_levels_ = utils::inumeric(FLERR, val, false, lmp);
+        if (limiter_levels_ < 1 || limiter_levels_ > 10)
+          error->all(FLERR,
+                     "fix sph/astro: limiter {} must be off or a number of bins from 1 to 10 (a "
+                     "particle's step at most 2^N times its neighbours'; 2 is usual)",
+                     val);
+      }
     } else if (key == "dt") {
       if (strcmp(val, "adaptive") == 0)
         adaptive_ = true;
@@ -156,7 +184,7 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
     } else
       error->all(FLERR,
                  "fix sph/astro: unknown keyword '{}'; allowed: thermal, courant, force, energy, "
-                 "conduction, conductivity, xsph, dtmax, dtmin, tend, dt",
+                 "conduction, conductivity, xsph, dtmax, dtmin, tend, dt, steps, limiter",
                  key);
     iarg += 2;
   }
@@ -169,6 +197,18 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR, "fix sph/astro needs atom IDs (atom_modify id yes) to report atoms");
   if (dtmin_ > 0.0 && dtmax_ > 0.0 && dtmin_ > dtmax_)
     error->all(FLERR, "fix sph/astro: dtmin {} is larger than dtmax {}", dtmin_, dtmax_);
+  if (individual) {
+    if (!adaptive_)
+      error->all(FLERR,
+                 "fix sph/astro: steps individual needs dt adaptive (each particle's step comes "
+                 "from its own criteria)");
+    if (xsph_eps_ > 0.0)
+      error->all(FLERR, "fix sph/astro: xsph is not available with steps individual");
+    steps_ = new IndividualSteps(lmp, this, limiter_levels_);
+    comm_forward = comm_reverse = 1;
+    // [5] active particles this step, [6] occupied bins, [7] particle-updates, [8] woken
+    size_vector = 8;
+  }
   if (xsph_eps_ > 0.0) {    // per-atom output: the XSPH velocity correction
     peratom_flag = 1;
     size_peratom_cols = 3;
@@ -179,6 +219,7 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
 FixSPHAstro::~FixSPHAstro()
 {
   memory->destroy(xsph_);
+  delete steps_;
   delete state_;
   delete entropy_index_;
   delete continuity_index_;
@@ -196,6 +237,7 @@ int FixSPHAstro::setmask()
 {
   int mask = INITIAL_INTEGRATE | FINAL_INTEGRATE | END_OF_STEP;
   if (xsph_eps_ > 0.0) mask |= POST_FORCE;    // XSPH correction after the forces
+  if (steps_) mask |= PRE_FORCE;              // the active particles of a step
   return mask;
 }
 
@@ -206,6 +248,7 @@ void FixSPHAstro::post_constructor()
   // a pair style read from a restart file did not create its state: LAMMPS restores the
   // per-atom values of d_rhoest d_drhodt once the fix exists again
   if (pair_has_continuity()) ensure_continuity_state(lmp, "fix sph/astro");
+  if (steps_) ensure_step_state(lmp, "fix sph/astro steps individual");
 }
 
 bool FixSPHAstro::pair_has_continuity() const
@@ -259,6 +302,10 @@ void FixSPHAstro::init()
   if (!unchanged) entropy_needs_init_ = true;    // A follows from the new u at the next density
   pair_->schedule_initialisation(entropy_ && entropy_needs_init_,
                                  continuity_ && density_needs_init_);
+  if (steps_) {
+    check_individual_options();
+    steps_->init(*state_, unchanged);
+  }
   if (predicted_step_ != update->ntimestep || !unchanged) {
     const int nlocal = atom->nlocal;
     double **v = atom->v;
@@ -293,6 +340,17 @@ void FixSPHAstro::setup(int /*vflag*/)
     timer->force_timeout();
     return;
   }
+  if (steps_) {
+    // a continued hierarchy goes on with its next step; a new one starts here, and again at
+    // step 1, when the setup forces of all fixes are in
+    if (!steps_->continuing()) {
+      wanted_steps(true);
+      steps_->start(wanted_, dtmax_, tend_ > 0.0 ? tend_ - current_time() : 0.0, pair_);
+      dt_pending_ = true;
+    }
+    next_individual_timestep();
+    return;
+  }
   if (xsph_eps_ > 0.0) xsph_correction();    // for the first drift
   // fixes defined after this one add their setup forces later: the first step's dt is taken
   // again at the start of step 1, when all forces are in
@@ -305,8 +363,31 @@ double FixSPHAstro::current_time() const
   return update->atime + (update->ntimestep - update->atimestep) * update->dt;
 }
 
+void FixSPHAstro::setup_pre_force(int /*vflag*/)
+{
+  if (steps_) steps_->setup_pre_force(pair_);
+}
+
+void FixSPHAstro::pre_force(int /*vflag*/)
+{
+  if (steps_) steps_->pre_force(pair_);
+}
+
 void FixSPHAstro::initial_integrate(int /*vflag*/)
 {
+  if (steps_) {
+    if (dt_pending_) {    // a new hierarchy: every particle's bin from the setup forces
+      dt_pending_ = false;
+      // (the time at the start of this step: current_time() is that at its end)
+      const double now = current_time() - update->dt;
+      wanted_steps(true);
+      steps_->start(wanted_, dtmax_, tend_ > 0.0 ? tend_ - now : 0.0, pair_);
+      next_individual_timestep();
+    }
+    steps_->kick_drift(hfix_ ? pair_->h_cap() : 0.0, evolve_u_);
+    predicted_step_ = update->ntimestep;
+    return;
+  }
   if (dt_pending_) {
     dt_pending_ = false;
     next_timestep();
@@ -369,6 +450,10 @@ void FixSPHAstro::initial_integrate(int /*vflag*/)
 
 void FixSPHAstro::final_integrate()
 {
+  if (steps_) {
+    steps_->final_kick(evolve_u_);
+    return;
+  }
   const double dtf = 0.5 * update->dt;
   double **v = atom->v;
   double **f = atom->f;
@@ -428,11 +513,35 @@ void FixSPHAstro::end_of_step()
                      update->ntimestep);
     return;
   }
+  if (steps_) {
+    wanted_steps(false);
+    steps_->end_of_step(wanted_, pair_);
+    next_individual_timestep();
+    return;
+  }
   next_timestep(true);
 }
 
 void FixSPHAstro::post_run()
 {
+  if (steps_ && steps_->started()) {    // the hierarchy's figures and its bins
+    std::vector<double> histogram;
+    const int occupied = steps_->occupied_bins(&histogram);
+    double woken = steps_->woken(), all_woken;
+    MPI_Allreduce(&woken, &all_woken, 1, MPI_DOUBLE, MPI_SUM, world);
+    if (comm->me == 0) {
+      const double n = static_cast<double>(atom->natoms);
+      std::string bins;
+      for (int b = 0; b <= TimeBins::MAX_BIN; b++)
+        if (histogram[b] > 0.0) bins += fmt::format(" {}:{:.0f}", b, histogram[b]);
+      utils::logmesg(lmp,
+                     "fix sph/astro steps individual: {:.0f} particle-updates in {:.0f} steps "
+                     "({:.1f} per particle), {:.0f} woken by the limiter; dt_max {:.6g}, {} "
+                     "occupied bins (bin:particles, dt = dt_max/2^bin):{}\n",
+                     steps_->updates(), steps_->steps(), n > 0 ? steps_->updates() / n : 0.0,
+                     all_woken, steps_->dt_max(), occupied, bins);
+    }
+  }
   // a stop at tend ends this run only; later runs get the user's timeout back
   if (stopped_at_tend_) timer->reset_timeout();
   // a fixed step shortened to land on tend is the user's step again
@@ -489,26 +598,35 @@ void FixSPHAstro::schedule_output(bigint step)
   }
 }
 
+// the timestep criteria of atom i (sph_astro_timestep.h): Courant, force, energy, conduction
+// (physical and artificial)
+void FixSPHAstro::criteria(int i, double dts[4]) const
+{
+  const double h = atom->dvector[state_->h][i];
+  double **f = atom->f;
+  const double m = atom->rmass ? atom->rmass[i] : atom->mass[atom->type[i]];
+  const double a = std::sqrt(f[i][0] * f[i][0] + f[i][1] * f[i][1] + f[i][2] * f[i][2]) / m;
+  dts[0] = dt_courant(courant_, h, pair_->courant_signal_speed(i));
+  dts[1] = dt_force(force_factor_, h, a);
+  dts[2] = evolve_u_ && energy_factor_ > 0.0
+      ? dt_energy(energy_factor_, atom->dvector[state_->u][i], atom->dvector[state_->dudt][i])
+      : INFINITY;
+  dts[3] = INFINITY;
+  const double kappa = pair_->options().conduction;    // physical heat conduction, 0: off
+  if (kappa > 0.0)
+    dts[3] = conduction_timestep(cond_factor_, atom->dvector[state_->rho][i], h, kappa);
+  if (pair_->options().artificial_conductivity())
+    dts[3] = MIN(dts[3], dt_conductivity(condu_factor_, pair_->conductivity_rate(i)));
+}
+
 void FixSPHAstro::next_timestep(bool from_end_of_step)
 {
   double dt = update->dt;
   if (adaptive_) {
-    const double *h = atom->dvector[state_->h];
-    double **f = atom->f;
     const int *mask = atom->mask;
-    const int *type = atom->type;
-    const double *rmass = atom->rmass;
-    const double *mass = atom->mass;
     const int nlocal = atom->nlocal;
-    const double *u = atom->dvector[state_->u];
-    const double *dudt = atom->dvector[state_->dudt];
-    const bool energy_limit = evolve_u_ && energy_factor_ > 0.0;
-    const double kappa = pair_->options().conduction;    // physical heat conduction, 0: off
-    const bool conductivity = pair_->options().artificial_conductivity();
-    const double *rho = atom->dvector[state_->rho];
 
-    // minimum over particles of each criterion (sph_astro_timestep.h), with the rank of the
-    // limiting atom: Courant, force, energy, conduction (physical and artificial)
+    // minimum over particles of each criterion, with the rank of the limiting atom
     struct {
       double value;
       int rank;
@@ -518,21 +636,15 @@ void FixSPHAstro::next_timestep(bool from_end_of_step)
                  {INFINITY, comm->me}},
       all[4];
     tagint limiting[4] = {0, 0, 0, 0};
-    auto consider = [&](int k, double dtk, int i) {
-      if (dtk < mine[k].value) {
-        mine[k].value = dtk;
-        limiting[k] = atom->tag[i];
-      }
-    };
     for (int i = 0; i < nlocal; i++) {
       if (!(mask[i] & groupbit)) continue;
-      consider(0, dt_courant(courant_, h[i], pair_->courant_signal_speed(i)), i);
-      const double m = rmass ? rmass[i] : mass[type[i]];
-      const double a = std::sqrt(f[i][0] * f[i][0] + f[i][1] * f[i][1] + f[i][2] * f[i][2]) / m;
-      consider(1, dt_force(force_factor_, h[i], a), i);
-      if (energy_limit) consider(2, dt_energy(energy_factor_, u[i], dudt[i]), i);
-      if (kappa > 0.0) consider(3, conduction_timestep(cond_factor_, rho[i], h[i], kappa), i);
-      if (conductivity) consider(3, dt_conductivity(condu_factor_, pair_->conductivity_rate(i)), i);
+      double dts[4];
+      criteria(i, dts);
+      for (int k = 0; k < 4; k++)
+        if (dts[k] < mine[k].value) {
+          mine[k].value = dts[k];
+          limiting[k] = atom->tag[i];
+        }
     }
     MPI_Allreduce(mine, all, 4, MPI_DOUBLE_INT, MPI_MINLOC, world);
     last_dt_cv_ = all[0].value;
@@ -581,6 +693,87 @@ void FixSPHAstro::set_timestep(double dt)
   output->reset_dt();
 }
 
+/* ----------------------------------------------------------------------
+   individual timesteps (steps individual): sph_astro_individual_steps.h
+------------------------------------------------------------------------- */
+
+// what the hierarchy does not carry between a particle's evaluations
+void FixSPHAstro::check_individual_options()
+{
+  const PairOptions &o = pair_->options();
+  const char *what = entropy_   ? "fix sph/astro thermal entropy"
+      : o.density_continuity    ? "pair_style sph/astro density continuity"
+      : o.physical_conduction() ? "pair_style sph/astro conduction"
+      : o.reconstruction()      ? "pair_style sph/astro reconstruct"
+      : o.pressure_energy       ? "pair_style sph/astro formulation pressure-energy"
+      : !modify->get_fix_by_style("^sph/astro/switch$").empty() ? "fix sph/astro/switch"
+                                                                : nullptr;
+  if (what)
+    error->all(FLERR,
+               "fix sph/astro steps individual: {} is not available with individual timesteps "
+               "(use steps global)",
+               what);
+  if (group->count(igroup) != atom->natoms)
+    error->all(FLERR,
+               "fix sph/astro steps individual: group {} must hold all particles (each pair "
+               "is evaluated when one of its particles is active)",
+               group->names[igroup]);
+}
+
+// each active particle's step (all: every particle's) from its criteria, at most dtmax
+void FixSPHAstro::wanted_steps(bool all)
+{
+  const int nlocal = atom->nlocal;
+  wanted_.assign(nlocal, INFINITY);
+  const int *mask = atom->mask;
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit) || !(all || steps_->active(i))) continue;
+    double dts[4];
+    criteria(i, dts);
+    double dt = MIN(MIN(dts[0], dts[1]), MIN(dts[2], dts[3]));
+    if (dtmax_ > 0.0) dt = MIN(dt, dtmax_);
+    wanted_[i] = dt;
+  }
+}
+
+// LAMMPS' next step: to the next end of a particle step
+void FixSPHAstro::next_individual_timestep()
+{
+  const double dt = steps_->next_dt();
+  if (dtmin_ > 0.0 && dt < dtmin_)
+    error->all(FLERR,
+               "fix sph/astro: timestep {} fell below dtmin = {} at step {} (individual steps: "
+               "the shortest particle step)",
+               dt, dtmin_, update->ntimestep);
+  if (!(dt > 0.0) || !std::isfinite(dt))
+    error->all(FLERR, "fix sph/astro: timestep {} at step {} is not positive and finite", dt,
+               update->ntimestep);
+  // thermo at the step that reaches tend (on the time line's grid)
+  if (tend_ > 0.0 && current_time() + dt >= tend_ * (1.0 - 1e-12))
+    schedule_output(update->ntimestep + 1);
+  set_timestep(dt);
+}
+
+int FixSPHAstro::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, int * /*pbc*/)
+{
+  return steps_ ? steps_->pack_forward_comm(n, list, buf) : 0;
+}
+
+void FixSPHAstro::unpack_forward_comm(int n, int first, double *buf)
+{
+  if (steps_) steps_->unpack_forward_comm(n, first, buf);
+}
+
+int FixSPHAstro::pack_reverse_comm(int n, int first, double *buf)
+{
+  return steps_ ? steps_->pack_reverse_comm(n, first, buf) : 0;
+}
+
+void FixSPHAstro::unpack_reverse_comm(int n, int *list, double *buf)
+{
+  if (steps_) steps_->unpack_reverse_comm(n, list, buf);
+}
+
 double FixSPHAstro::compute_scalar()
 {
   return update->dt;
@@ -588,6 +781,14 @@ double FixSPHAstro::compute_scalar()
 
 double FixSPHAstro::compute_vector(int n)
 {
+  if (n >= 4 && steps_) {
+    if (n == 4) return steps_->active_count();
+    if (n == 5) return steps_->occupied_bins();
+    if (n == 6) return steps_->updates();
+    double woken = steps_->woken(), all;
+    MPI_Allreduce(&woken, &all, 1, MPI_DOUBLE, MPI_SUM, world);
+    return all;
+  }
   const double values[4] = {last_dt_cv_, last_dt_force_, last_dt_energy_, last_dt_cond_};
   return values[n];
 }
@@ -607,15 +808,16 @@ void FixSPHAstro::write_restart(FILE *fp)
   // restart files written during a run (restart command) need the hash of this step
   state_hash_ = hash_velocity_energy();
   if (comm->me != 0) return;
-  std::vector<double> list = {static_cast<double>(predicted_step_),
-                              static_cast<double>(state_hash_ >> 32),
-                              static_cast<double>(state_hash_ & 0xffffffffULL),
-                              static_cast<double>(reference_energy_.size())};
+  std::vector<double> list = {
+      static_cast<double>(predicted_step_), static_cast<double>(state_hash_ >> 32),
+      static_cast<double>(state_hash_ & 0xffffffffULL),
+      static_cast<double>(reference_energy_.size()) + (steps_ ? STEP_BLOCK : 0.0)};
   for (const auto &[id, energy] : reference_energy_) {
     list.push_back(static_cast<double>(id.size()));
     for (char c : id) list.push_back(static_cast<double>(c));
     list.push_back(energy);
   }
+  if (steps_) steps_->write_restart(list);
   int size = static_cast<int>(list.size() * sizeof(double));
   fwrite(&size, sizeof(int), 1, fp);
   fwrite(list.data(), sizeof(double), list.size(), fp);
@@ -630,7 +832,10 @@ void FixSPHAstro::restart(char *buf)
   predicted_step_ = static_cast<bigint>(list[n++]);
   state_hash_ = static_cast<uint64_t>(list[n++]) << 32;
   state_hash_ |= static_cast<uint64_t>(list[n++]);
-  const int nref = static_cast<int>(list[n++]);
+  double count = list[n++];
+  const bool step_block = count >= STEP_BLOCK;
+  if (step_block) count -= STEP_BLOCK;
+  const int nref = static_cast<int>(count);
   reference_energy_.clear();
   for (int k = 0; k < nref; k++) {
     const int len = static_cast<int>(list[n++]);
@@ -638,6 +843,8 @@ void FixSPHAstro::restart(char *buf)
     for (int c = 0; c < len; c++) id += static_cast<char>(list[n++]);
     reference_energy_[id] = list[n++];
   }
+  // a hierarchy of individual steps continues where it was (if this fix steps individually)
+  if (step_block && steps_) steps_->read_restart(list + n);
 }
 
 /* ----------------------------------------------------------------------

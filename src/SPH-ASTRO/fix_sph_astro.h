@@ -19,11 +19,13 @@ FixStyle(sph/astro,FixSPHAstro);
 #include <cstdint>
 #include <map>
 #include <string>
+#include <vector>
 
 namespace SPHAstro {
 struct StateIndex;
 struct EntropyIndex;
 struct ContinuityIndex;
+class IndividualSteps;
 }    // namespace SPHAstro
 
 namespace LAMMPS_NS {
@@ -36,8 +38,10 @@ class FixSPHAstro : public Fix {
   int setmask() override;
   void post_constructor() override;
   void init() override;
+  void setup_pre_force(int) override;
   void setup(int) override;
   void initial_integrate(int) override;
+  void pre_force(int) override;
   void final_integrate() override;
   void post_force(int) override;
   void end_of_step() override;
@@ -46,6 +50,10 @@ class FixSPHAstro : public Fix {
   double compute_vector(int) override;
   void write_restart(FILE *) override;
   void restart(char *) override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
+  int pack_reverse_comm(int, int, double *) override;
+  void unpack_reverse_comm(int, int *, double *) override;
 
   // "entropy": 1 when the thermal variable is the entropic function A (P = A rho^gamma)
   void *extract(const char *, int &) override;
@@ -100,6 +108,18 @@ class FixSPHAstro : public Fix {
 
   double last_dt_cv_, last_dt_force_, last_dt_energy_, last_dt_cond_;
   tagint last_limiting_atom_;
+
+  // individual timesteps (steps individual; sph_astro_individual_steps.h), null: global
+  SPHAstro::IndividualSteps *steps_;
+  int limiter_levels_;    // the limiter: no step more than 2^levels x a neighbour's (0: off)
+  std::vector<double> wanted_;
+  // the timestep criteria of atom i: Courant, force, energy, conduction (infinite where one
+  // does not limit it)
+  void criteria(int i, double dts[4]) const;
+  // each active particle's (all: every particle's) step from its criteria and dtmax
+  void wanted_steps(bool all);
+  void check_individual_options();
+  void next_individual_timestep();
 
   void next_timestep(bool from_end_of_step = false);
   void set_timestep(double dt);

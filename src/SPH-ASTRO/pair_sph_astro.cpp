@@ -49,10 +49,11 @@ using namespace SPHAstro;
 PairSPHAstro::PairSPHAstro(LAMMPS *lmp) :
     Pair(lmp), opt_(new PairOptions()), fields_(new Fields()), lists_(new NeighbourLists(lmp)),
     hstats_(new GradhStatistics()), state_(new StateIndex()), entropy_index_(new EntropyIndex()),
-    continuity_index_(new ContinuityIndex()), scheme_(new Scheme()), entropy_init_pending_(false),
-    density_init_pending_(false), alpha_atom_(nullptr), h_cap_start_(0.0), h_cap_(0.0),
-    sph_type_(nullptr), kernel_radius_(2.0), h_failures_(0), counts_step_(-1), computed_step_(-1),
-    computed_nlocal_(-1), comm_table_(new CommTable())
+    continuity_index_(new ContinuityIndex()), step_index_(new StepIndex()), active_(nullptr),
+    scheme_(new Scheme()), entropy_init_pending_(false), density_init_pending_(false),
+    alpha_atom_(nullptr), h_cap_start_(0.0), h_cap_(0.0), sph_type_(nullptr), kernel_radius_(2.0),
+    h_failures_(0), counts_step_(-1), computed_step_(-1), computed_nlocal_(-1),
+    comm_table_(new CommTable())
 {
   single_enable = 0;
   restartinfo = 1;
@@ -80,6 +81,7 @@ PairSPHAstro::~PairSPHAstro()
   delete state_;
   delete entropy_index_;
   delete continuity_index_;
+  delete step_index_;
   delete scheme_;
   delete comm_table_;
 }
@@ -117,6 +119,7 @@ void PairSPHAstro::allocate()
 void PairSPHAstro::init_style()
 {
   const PairOptions &o = *opt_;
+  active_ = nullptr;    // fix sph/astro steps individual sets it again before each evaluation
   if (!find_state(lmp, *state_))
     error->all(FLERR,
                "pair_style sph/astro needs the SPH per-particle state: define fix sph/astro "
@@ -318,6 +321,13 @@ void PairSPHAstro::compute(int eflag, int vflag)
   if (scheme_->entropy)
     arrays.entropy = {atom->dvector[entropy_index_->A], atom->dvector[entropy_index_->Aest],
                       atom->dvector[entropy_index_->dAdt], atom->dvector[state_->u]};
+  if (active_) {    // individual timesteps (fix sph/astro checked the step state exists)
+    if (!find_step_state(lmp, *step_index_))
+      error->all(FLERR, "pair_style sph/astro: the individual-step state fix {} is missing",
+                 STEPS_FIX_ID);
+    arrays.steps = {active_, atom->dvector[step_index_->omega], atom->dvector[step_index_->balsara],
+                    atom->dvector[step_index_->divv]};
+  }
   PairExchange exchange(this);
   ForceEvaluation evaluation(ctx, *opt_, *scheme_, arrays, exchange);
   const EvaluationResult result =
@@ -330,6 +340,11 @@ void PairSPHAstro::compute(int eflag, int vflag)
   if (vflag_fdotr) virial_fdotr_compute();
   computed_step_ = update->ntimestep;
   computed_nlocal_ = atom->nlocal;
+}
+
+const NeighView &PairSPHAstro::evaluated_pairs() const
+{
+  return lists_->due_view();
 }
 
 /* ----------------------------------------------------------------------

@@ -28,6 +28,8 @@ struct SearchStatistics;
 struct StateIndex;
 struct EntropyIndex;
 struct ContinuityIndex;
+struct StepIndex;
+struct NeighView;
 class NeighbourLists;
 struct Scheme;
 struct GradhSettings;
@@ -114,6 +116,14 @@ class PairSPHAstro : public Pair {
   static constexpr double LIST_REBUILD = 1.05;    // reneighbour when LIST_REBUILD h > limit
   const SPHAstro::SearchStatistics &search_statistics() const;
 
+  // individual timesteps (fix sph/astro steps individual): the owned and ghost atoms whose
+  // step ends with this step's force evaluation (one flag per atom, valid until the next
+  // reneighbouring; null: global stepping). Only the pairs with an active atom are evaluated,
+  // and only active atoms get new values (sph_astro_force_evaluation.h)
+  void set_active(const char *active) { active_ = active; }
+  // the pairs of the latest evaluation with individual steps (the limiter's neighbours)
+  const SPHAstro::NeighView &evaluated_pairs() const;
+
   // the communication of one stage of a force evaluation (sph_astro_force_evaluation.h):
   // owned -> ghost copies of these arrays, or the ghosts' parts summed into their owners
   void forward(std::initializer_list<SPHAstro::CommField> fields);
@@ -127,6 +137,8 @@ class PairSPHAstro : public Pair {
   SPHAstro::StateIndex *state_;
   SPHAstro::EntropyIndex *entropy_index_;
   SPHAstro::ContinuityIndex *continuity_index_;
+  SPHAstro::StepIndex *step_index_;
+  const char *active_;
 
   SPHAstro::Scheme *scheme_;    // what the package's fixes ask for (sph_astro_scheme.h)
   bool entropy_init_pending_, density_init_pending_;

@@ -19,13 +19,24 @@ EvaluationResult ForceEvaluation::run(NeighbourLists &lists, const GradhSettings
 {
   EvaluationResult result;
   h_cap_ = h_cap;
+  Fields &f = *ctx_.f;
   if (scheme_.hmode == Scheme::HMode::DHDT)
     exchange_.forward({{a_.h, nullptr, 1, false}});    // the ghosts' h of this step
-  if (!scheme_.gradh()) ctx_.half = lists.half(a_.h);
-  density(gradh, hstats, initialise_density, result);
-  if (scheme_.gradh()) ctx_.half = lists.half(a_.h);    // h is that of the iteration now
+  GradhSettings iteration = gradh;
+  if (individual()) {    // the h-rho iteration of the active atoms only
+    active_owned_.clear();
+    for (int ii = 0; ii < gradh.full.inum; ii++)
+      if (a_.steps.active[gradh.full.ilist[ii]]) active_owned_.push_back(gradh.full.ilist[ii]);
+    iteration.full.inum = static_cast<int>(active_owned_.size());
+    iteration.full.ilist = active_owned_.data();
+  }
+  if (!scheme_.gradh()) ctx_.half = evaluated_pairs(lists);
+  density(iteration, hstats, initialise_density, result);
+  if (scheme_.gradh()) ctx_.half = evaluated_pairs(lists);    // h is that of the iteration now
+  if (individual() && scheme_.gradh()) restore(f.omega, a_.steps.omega);
   equation_of_state(initialise_entropy);
   gradients();
+  if (individual() && o_.balsara) restore(f.balsara, a_.steps.balsara);
   // pressure-energy with grad-h terms: div v and curl v above are those of the mass density
   // and Omega; now rho_i = P_i / ((gamma-1) u_i) and the EOS again (P = (gamma-1) rho u)
   if (scheme_.gradh() && o_.pressure_energy) {
@@ -35,7 +46,36 @@ EvaluationResult ForceEvaluation::run(NeighbourLists &lists, const GradhSettings
   forward_state();
   force();
   if (o_.physical_conduction()) conduction();
+  if (individual()) {
+    if (scheme_.gradh()) keep(f.omega, a_.steps.omega);
+    if (o_.balsara) keep(f.balsara, a_.steps.balsara);
+    keep(f.divv, a_.steps.divv);
+    restore(f.divv, a_.steps.divv);
+  }
   return result;
+}
+
+NeighView ForceEvaluation::evaluated_pairs(NeighbourLists &lists)
+{
+  const NeighView half = lists.half(a_.h);
+  if (!individual()) return half;
+  return lists.due(half, a_.steps.active);
+}
+
+void ForceEvaluation::restore(double *field, const double *kept)
+{
+  const int nlocal = ctx_.p.nlocal;
+  const char *active = a_.steps.active;
+  for (int i = 0; i < nlocal; i++)
+    if (!active[i]) field[i] = kept[i];
+}
+
+void ForceEvaluation::keep(const double *field, double *kept)
+{
+  const int nlocal = ctx_.p.nlocal;
+  const char *active = a_.steps.active;
+  for (int i = 0; i < nlocal; i++)
+    if (active[i]) kept[i] = field[i];
 }
 
 void ForceEvaluation::density(const GradhSettings &gradh, GradhStatistics &hstats, bool initialise,
@@ -51,10 +91,13 @@ void ForceEvaluation::density(const GradhSettings &gradh, GradhStatistics &hstat
     return;
   }
   if (o_.density_continuity && !initialise) return;    // counted only if asked for
+  // (individual steps: inactive atoms keep their density, drifted by fix sph/astro)
+  if (individual()) rho_kept_.assign(ctx_.rho_sum, ctx_.rho_sum + ctx_.p.nlocal);
   density_summation(ctx_, o_.symmetrise_kernel, o_.pressure_energy);
   result.counted = true;
   if (ctx_.newton)
     exchange_.reverse({{ctx_.rho_sum, nullptr, 1, false}, {f.nneigh, nullptr, 1, false}});
+  if (individual()) restore(ctx_.rho_sum, rho_kept_.data());
   if (o_.pressure_energy) pressure_energy_density(ctx_, ctx_.rho_sum);
   if (o_.density_continuity)    // the integrated density starts from one summation
     for (int i = 0; i < ctx_.p.nlocal; i++) a_.rhoest[i] = ctx_.rho_sum[i];

@@ -24,6 +24,7 @@
 #include "sph_astro_scheme.h"
 
 #include <initializer_list>
+#include <vector>
 
 namespace SPHAstro {
 
@@ -39,11 +40,22 @@ class Exchange {
   ~Exchange() = default;
 };
 
+// Individual timesteps (fix sph/astro steps individual): only the pairs with an active atom
+// are evaluated (sph_astro_due_pairs.h) and only active atoms get a new density, h, Omega,
+// Balsara factor and div v; an inactive atom keeps what its last evaluation left (its rho and
+// h drifted by fix sph/astro), which the force pass reads through the ghosts
+struct ActiveSet {
+  const char *active = nullptr;    // per owned and ghost atom; null: global stepping
+  // the last evaluation's values of owned atoms (d_step_omega, d_step_balsara, d_step_divv)
+  double *omega = nullptr, *balsara = nullptr, *divv = nullptr;
+};
+
 // per-atom state arrays the stages read or write besides those of the PassContext
 struct EvaluationArrays {
   double *h;                  // d_h (the ghosts' copy is sent where h changed)
   double *rhoest, *drhodt;    // density continuity, else null
   EntropyArrays entropy;      // thermal entropy (A null without it)
+  ActiveSet steps;            // individual timesteps
 };
 
 // what an evaluation leaves for the pair to report
@@ -72,6 +84,16 @@ class ForceEvaluation {
   const EvaluationArrays &a_;
   Exchange &exchange_;
   double h_cap_ = 0.0;
+  std::vector<int> active_owned_;
+  std::vector<double> rho_kept_;
+
+  bool individual() const { return a_.steps.active != nullptr; }
+  // individual steps: the half list's pairs with an active atom
+  NeighView evaluated_pairs(NeighbourLists &lists);
+  // individual steps: inactive owned atoms take back their kept values of field (restore), or
+  // active ones keep this evaluation's (keep)
+  void restore(double *field, const double *kept);
+  void keep(const double *field, double *kept);
 
   void density(const GradhSettings &gradh, GradhStatistics &hstats, bool initialise,
                EvaluationResult &result);

@@ -126,6 +126,7 @@ void NeighbourLists::build(const double *h, double pad)
   const HalfFromFull half_rule{nlocal, s.newton, domain->triclinic != 0, 0.01 * force->angstrom};
   half_.rows.reset();
   full_.rows.reset();
+  due_indexed_ = false;
   // leaf by leaf: one traversal per leaf collects its candidates (sph_astro_neighbour_tree.h)
   const int leaves = tree_.leaves();
   for (int l = 0; l < leaves; l++) {
@@ -177,6 +178,17 @@ void NeighbourLists::build(const double *h, double pad)
   stats_.full_entries = s.full ? full_.rows.entries() / atoms : 0.0;
 }
 
+NeighView NeighbourLists::due(const NeighView &half, const char *active)
+{
+  const int nall = atom->nlocal + atom->nghost;
+  if (!due_indexed_) {
+    due_.index(half, nall);
+    due_indexed_ = true;
+  }
+  due_view_ = due_.select(half, atom->nlocal, nall, active);
+  return due_view_;
+}
+
 // a gather row searched at the current positions (the tree knows how far atoms may have moved)
 const int *NeighbourLists::row(int i, double h, double &h_row, int &n)
 {
@@ -201,8 +213,8 @@ double NeighbourLists::memory_usage() const
       half_.numneigh.capacity() * (sizeof(int) + sizeof(int *)) +
       full_.numneigh.capacity() * (sizeof(int) + sizeof(int *)) +
       (ilist_.capacity() + members_.capacity()) * sizeof(int);
-  return per_atom + tree_.memory_usage() + half_.rows.memory_usage() + full_.rows.memory_usage() +
-      (scratch_.capacity() + full_scratch_.capacity()) * sizeof(int);
+  return per_atom + due_.memory_usage() + tree_.memory_usage() + half_.rows.memory_usage() +
+      full_.rows.memory_usage() + (scratch_.capacity() + full_scratch_.capacity()) * sizeof(int);
 }
 
 }    // namespace SPHAstro

@@ -25,6 +25,7 @@
 #define LMP_SPH_ASTRO_NEIGHBOUR_LISTS_H
 
 #include "pointers.h"
+#include "sph_astro_due_pairs.h"
 #include "sph_astro_neigh_view.h"
 #include "sph_astro_neighbour_tree.h"
 #include "sph_astro_passes.h"
@@ -88,6 +89,10 @@ class NeighbourLists : protected LAMMPS_NS::Pointers {
   // the half list, made again first if an h (owned or ghost) outgrew its hl
   NeighView half(const double *h);
   NeighView full() const { return full_.view(inum_, ilist_.data()); }
+  // individual steps: the pairs of half (the view half() returned) with an active atom
+  NeighView due(const NeighView &half, const char *active);
+  // the due pairs of the last due()
+  const NeighView &due_view() const { return due_view_; }
   // the largest h each row serves (owned and ghost)
   const double *limits() const { return hl_.data(); }
   double limit(int i) const { return hl_[i]; }
@@ -113,6 +118,9 @@ class NeighbourLists : protected LAMMPS_NS::Pointers {
   int inum_ = 0;
   SearchList half_, full_;
   SearchStatistics stats_;
+  DuePairs due_;
+  bool due_indexed_ = false;    // due_ holds the index of the current half list
+  NeighView due_view_{0, nullptr, nullptr, nullptr};
   struct Wide : WideRows {
     NeighbourLists *lists;
     explicit Wide(NeighbourLists *l) : lists(l) {}

@@ -128,4 +128,42 @@ void ensure_continuity_state(LAMMPS *lmp, const char *caller)
                        " all property/atom d_rhoest d_drhodt ghost yes");
 }
 
+namespace {
+  const char *const STEP_VECTORS[] = {"step_begin", "step_end",   "step_bin",    "step_dudt",
+                                      "step_divv",  "step_omega", "step_balsara"};
+}
+
+bool find_step_state(LAMMPS *lmp, StepIndex &idx)
+{
+  int flag, cols;
+  int *fields[] = {&idx.begin, &idx.end, &idx.bin, &idx.dudt, &idx.divv, &idx.omega, &idx.balsara};
+  for (int k = 0; k < 7; k++) {
+    *fields[k] = lmp->atom->find_custom(STEP_VECTORS[k], flag, cols);
+    if (*fields[k] < 0 || flag != 1 || cols != 0) return false;
+  }
+  idx.accel = lmp->atom->find_custom("step_accel", flag, cols);
+  return idx.accel >= 0 && flag == 1 && cols == 3;
+}
+
+void ensure_step_state(LAMMPS *lmp, const char *caller)
+{
+  StepIndex idx;
+  if (lmp->modify->get_fix_by_id(STEPS_FIX_ID)) {
+    if (!find_step_state(lmp, idx))
+      lmp->error->all(FLERR, "{}: fix {} exists but does not hold the individual-step state",
+                      caller, STEPS_FIX_ID);
+    return;
+  }
+  int flag, cols;
+  for (const char *name : STEP_VECTORS)
+    if (lmp->atom->find_custom(name, flag, cols) >= 0)
+      lmp->error->all(FLERR,
+                      "{}: a custom per-atom property d_{} already exists outside fix {}; "
+                      "SPH-ASTRO owns the names d_step_*",
+                      caller, name, STEPS_FIX_ID);
+  lmp->modify->add_fix(std::string(STEPS_FIX_ID) +
+                       " all property/atom d_step_begin d_step_end d_step_bin d2_step_accel 3 "
+                       "d_step_dudt d_step_divv d_step_omega d_step_balsara");
+}
+
 }    // namespace SPHAstro

@@ -75,6 +75,23 @@ struct ContinuityIndex {
 void ensure_continuity_state(LAMMPS_NS::LAMMPS *lmp, const char *caller);
 bool find_continuity_state(LAMMPS_NS::LAMMPS *lmp, ContinuityIndex &idx);
 
+// Individual timesteps (fix sph/astro steps individual): each particle's place on the time
+// line and what its neighbours need of its last force evaluation until its next one, in their
+// own fix property/atom SPH_ASTRO_STEPS, created only for such scenes:
+//   d_step_begin, d_step_end   the particle's current step, in ticks (sph_astro_time_bins.h)
+//   d_step_bin                 its bin: dt = dt_max / 2^bin
+//   d2_step_accel 3            acceleration of its last force evaluation (all forces)
+//   d_step_dudt                du/dt of its last force evaluation
+//   d_step_divv                div v (drifts rho and h between its evaluations)
+//   d_step_omega               grad-h factor Omega           (set by pair sph/astro)
+//   d_step_balsara             Balsara factor                (set by pair sph/astro)
+constexpr const char *STEPS_FIX_ID = "SPH_ASTRO_STEPS";
+struct StepIndex {
+  int begin = -1, end = -1, bin = -1, accel = -1, dudt = -1, divv = -1, omega = -1, balsara = -1;
+};
+void ensure_step_state(LAMMPS_NS::LAMMPS *lmp, const char *caller);
+bool find_step_state(LAMMPS_NS::LAMMPS *lmp, StepIndex &idx);
+
 }    // namespace SPHAstro
 
 #endif

@@ -1,0 +1,398 @@
+/* ----------------------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
+#include "sph_astro_individual_steps.h"
+
+#include "pair_sph_astro.h"
+#include "sph_astro_neigh_view.h"
+#include "sph_astro_time_bins.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "fix.h"
+#include "update.h"
+
+#include <algorithm>
+#include <cmath>
+
+using namespace LAMMPS_NS;
+
+namespace SPHAstro {
+
+IndividualSteps::IndividualSteps(LAMMPS *lmp, Fix *owner, int levels) :
+    Pointers(lmp), owner_(owner), levels_(levels)
+{
+}
+
+double IndividualSteps::tick() const
+{
+  return dt_max_ / TimeBins::cycle();
+}
+
+double IndividualSteps::mass(int i) const
+{
+  return atom->rmass ? atom->rmass[i] : atom->mass[atom->type[i]];
+}
+
+void IndividualSteps::grow()
+{
+  const std::size_t n = atom->nmax;
+  if (active_.size() < n) {
+    active_.resize(n);
+    bins_.resize(n);
+    required_.resize(n);
+  }
+}
+
+void IndividualSteps::init(const StateIndex &state, bool state_unchanged)
+{
+  state_ = state;
+  if (!find_step_state(lmp, idx_))
+    error->all(FLERR,
+               "fix sph/astro steps individual: the per-particle step state fix {} is missing",
+               STEPS_FIX_ID);
+  continuing_ = started_ && state_unchanged && hierarchy_step_ == update->ntimestep;
+}
+
+void IndividualSteps::setup_pre_force(PairSPHAstro *pair)
+{
+  grow();
+  const int nall = atom->nlocal + atom->nghost;
+  const int *mask = atom->mask;
+  // a continued hierarchy has every particle's values from its last evaluation: the setup
+  // evaluates none; a new one evaluates all
+  for (int i = 0; i < nall; i++) active_[i] = !continuing_ && (mask[i] & owner_->groupbit);
+  pair->set_active(active_.data());
+}
+
+void IndividualSteps::start(const std::vector<double> &wanted, double dtmax, double time_left,
+                            PairSPHAstro *pair)
+{
+  const int nlocal = atom->nlocal;
+  const int *mask = atom->mask;
+  double **f = atom->f;
+  double **accel = atom->darray[idx_.accel];
+  const double *dudt = atom->dvector[state_.dudt];
+  double *dudt_kept = atom->dvector[idx_.dudt];
+  double top_local = -1.0, top;
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & owner_->groupbit)) continue;
+    const double m = mass(i);
+    for (int d = 0; d < 3; d++) accel[i][d] = f[i][d] / m;
+    dudt_kept[i] = dudt[i];
+    if (std::isfinite(wanted[i])) top_local = std::max(top_local, wanted[i]);
+  }
+  MPI_Allreduce(&top_local, &top, 1, MPI_DOUBLE, MPI_MAX, world);
+  if (dtmax > 0.0) top = top > 0.0 ? std::min(top, dtmax) : dtmax;
+  if (time_left > 0.0) {    // tend on the grid: dt_max = (tend - now) / 2^k
+    if (!(top > 0.0) || top >= time_left)
+      top = time_left;
+    else
+      top = time_left / std::exp2(std::ceil(std::log2(time_left / top)));
+  }
+  if (!(top > 0.0) || !std::isfinite(top))
+    error->all(FLERR,
+               "fix sph/astro steps individual: no particle's timestep criteria limit its step "
+               "and neither dtmax nor tend is set; set dtmax (the longest step)");
+  dt_max_ = top;
+  ti_now_ = 0.0;
+  started_ = true;
+  updates_ = steps_ = woken_ = 0.0;
+  hierarchy_step_ = update->ntimestep;
+  assign_bins(wanted, true, pair);
+  advance_to_next();
+}
+
+void IndividualSteps::kick_drift(double h_cap, bool evolve_u)
+{
+  const double t = tick();
+  const double dt = next_dt();
+  const double dt_over_d = dt / domain->dimension;
+  const int nlocal = atom->nlocal;
+  const int *mask = atom->mask;
+  double **x = atom->x;
+  double **v = atom->v;
+  double **vest = atom->darray[state_.vest];
+  double *u = atom->dvector[state_.u];
+  double *uest = atom->dvector[state_.uest];
+  double *rho = atom->dvector[state_.rho];
+  double *h = atom->dvector[state_.h];
+  const double *begin = atom->dvector[idx_.begin];
+  const double *end = atom->dvector[idx_.end];
+  double **accel = atom->darray[idx_.accel];
+  const double *dudt = atom->dvector[idx_.dudt];
+  const double *divv = atom->dvector[idx_.divv];
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & owner_->groupbit)) {
+      for (int d = 0; d < 3; d++) vest[i][d] = v[i][d];
+      uest[i] = u[i];
+      continue;
+    }
+    if (begin[i] == ti_now_) {    // a step begins: first half kick
+      const double half = 0.5 * (end[i] - begin[i]) * t;
+      for (int d = 0; d < 3; d++) v[i][d] += half * accel[i][d];
+      if (evolve_u) u[i] += half * dudt[i];
+    }
+    for (int d = 0; d < 3; d++) x[i][d] += dt * v[i][d];
+    // predicted to the end of this LAMMPS step, from the middle of the particle's step
+    const double tau = (ti_next_ - 0.5 * (begin[i] + end[i])) * t;
+    for (int d = 0; d < 3; d++) vest[i][d] = v[i][d] + tau * accel[i][d];
+    uest[i] = evolve_u ? u[i] + tau * dudt[i] : u[i];
+    // rho and h follow the last div v (active particles: the h iteration's first guess)
+    if (h_cap > 0.0) h[i] = std::min(h[i] * std::exp(dt_over_d * divv[i]), h_cap);
+    rho[i] *= std::exp(-dt * divv[i]);
+  }
+}
+
+void IndividualSteps::pre_force(PairSPHAstro *pair)
+{
+  grow();
+  const int nlocal = atom->nlocal;
+  const int *mask = atom->mask;
+  const double *end = atom->dvector[idx_.end];
+  double count = 0.0;
+  for (int i = 0; i < nlocal; i++) {
+    active_[i] = (mask[i] & owner_->groupbit) && end[i] == ti_next_;
+    count += active_[i];
+  }
+  comm_ = Comm::ACTIVE;
+  comm->forward_comm(owner_, 1);
+  MPI_Allreduce(&count, &active_total_, 1, MPI_DOUBLE, MPI_SUM, world);
+  updates_ += active_total_;
+  steps_ += 1.0;
+  pair->set_active(active_.data());
+}
+
+void IndividualSteps::final_kick(bool evolve_u)
+{
+  const double t = tick();
+  const int nlocal = atom->nlocal;
+  const int *mask = atom->mask;
+  double **v = atom->v;
+  double **f = atom->f;
+  double *u = atom->dvector[state_.u];
+  double *dudt = atom->dvector[state_.dudt];
+  const double *begin = atom->dvector[idx_.begin];
+  const double *end = atom->dvector[idx_.end];
+  double **accel = atom->darray[idx_.accel];
+  double *dudt_kept = atom->dvector[idx_.dudt];
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & owner_->groupbit)) continue;
+    const double m = mass(i);
+    if (!active_[i]) {    // forces of this step are not its: its last evaluation's
+      for (int d = 0; d < 3; d++) f[i][d] = m * accel[i][d];
+      dudt[i] = dudt_kept[i];
+      continue;
+    }
+    const double half = 0.5 * (end[i] - begin[i]) * t;
+    for (int d = 0; d < 3; d++) {
+      accel[i][d] = f[i][d] / m;
+      v[i][d] += half * accel[i][d];
+    }
+    dudt_kept[i] = dudt[i];
+    if (evolve_u) {
+      u[i] += half * dudt[i];
+      if (!(u[i] >= 0.0) || !std::isfinite(u[i]))
+        error->one(FLERR,
+                   "fix sph/astro: atom {} has specific internal energy u = {} (du/dt = {}) at "
+                   "step {} (its own step {}); lower the timestep (courant, force, energy)",
+                   atom->tag[i], u[i], dudt[i], update->ntimestep, 2.0 * half);
+    }
+  }
+}
+
+void IndividualSteps::end_of_step(const std::vector<double> &wanted, PairSPHAstro *pair)
+{
+  ti_now_ = ti_next_;
+  hierarchy_step_ = update->ntimestep;
+  assign_bins(wanted, false, pair);
+  advance_to_next();
+}
+
+// the new bins of the active particles: their criteria, the grid, the limiter; their next step
+void IndividualSteps::assign_bins(const std::vector<double> &wanted, bool fresh, PairSPHAstro *pair)
+{
+  grow();
+  const int nlocal = atom->nlocal;
+  const int *mask = atom->mask;
+  double *bin = atom->dvector[idx_.bin];
+  double *begin = atom->dvector[idx_.begin];
+  double *end = atom->dvector[idx_.end];
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & owner_->groupbit)) {
+      bins_[i] = 0.0;
+      continue;
+    }
+    if (!active_[i]) {
+      bins_[i] = bin[i];
+      continue;
+    }
+    const int want = TimeBins::bin_for(dt_max_, wanted[i]);
+    if (want > TimeBins::MAX_BIN)
+      error->one(FLERR,
+                 "fix sph/astro steps individual: atom {} needs a timestep {} shorter than the "
+                 "shortest step dt_max / 2^{} = {} at step {}",
+                 atom->tag[i], wanted[i], TimeBins::MAX_BIN, dt_max_ / TimeBins::cycle(),
+                 update->ntimestep);
+    bins_[i] = fresh ? want : TimeBins::next_bin(static_cast<int>(bin[i]), want, ti_now_);
+  }
+  if (levels_ > 0) limit(pair);
+  for (int i = 0; i < nlocal; i++) {
+    if (!active_[i]) continue;
+    bin[i] = bins_[i];
+    begin[i] = ti_now_;
+    end[i] = ti_now_ + TimeBins::ticks(static_cast<int>(bins_[i]));
+  }
+}
+
+// the timestep limiter over the pairs of this step's evaluation (each has an active particle)
+void IndividualSteps::limit(PairSPHAstro *pair)
+{
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  comm_ = Comm::BINS;
+  comm->forward_comm(owner_, 1);
+  std::fill(required_.begin(), required_.begin() + nall, -1.0);
+  const NeighView &pairs = pair->evaluated_pairs();
+  const double levels = levels_;
+  for (int ii = 0; ii < pairs.inum; ii++) {
+    const int i = pairs.ilist[ii];
+    const int *row = pairs.firstneigh[i];
+    double need_i = required_[i];
+    const double bi = bins_[i] - levels;
+    for (int k = 0; k < pairs.numneigh[i]; k++) {
+      const int j = row[k] & NEIGHMASK;
+      need_i = std::max(need_i, bins_[j] - levels);
+      required_[j] = std::max(required_[j], bi);
+    }
+    required_[i] = need_i;
+  }
+  comm_ = Comm::REQUIRED;
+  comm->reverse_comm(owner_, 1);
+
+  const double t = tick();
+  const int *mask = atom->mask;
+  double **x = atom->x;
+  double **v = atom->v;
+  double *u = atom->dvector[state_.u];
+  double *bin = atom->dvector[idx_.bin];
+  const double *begin = atom->dvector[idx_.begin];
+  double *end = atom->dvector[idx_.end];
+  double **accel = atom->darray[idx_.accel];
+  const double *dudt = atom->dvector[idx_.dudt];
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & owner_->groupbit) || !(required_[i] > bins_[i])) continue;
+    if (active_[i]) {
+      bins_[i] = required_[i];
+      continue;
+    }
+    // wake a sleeping particle: its step ends at the next point of the allowed grid
+    const double new_end = TimeBins::wake_end(ti_now_, static_cast<int>(required_[i]));
+    if (!(new_end < end[i])) continue;
+    // its first half kick becomes that of the shortened step, and so does its drift since
+    const double shift = 0.5 * (new_end - end[i]) * t;
+    const double since = (ti_now_ - begin[i]) * t;
+    for (int d = 0; d < 3; d++) {
+      v[i][d] += shift * accel[i][d];
+      x[i][d] += shift * since * accel[i][d];
+    }
+    u[i] += shift * dudt[i];
+    end[i] = new_end;
+    bin[i] = required_[i];
+    woken_ += 1.0;
+  }
+}
+
+// the next LAMMPS step ends where the first particle step ends; at the end of a cycle (all
+// particles synchronised) the time line starts again at 0
+void IndividualSteps::advance_to_next()
+{
+  const int nlocal = atom->nlocal;
+  const int *mask = atom->mask;
+  double *begin = atom->dvector[idx_.begin];
+  double *end = atom->dvector[idx_.end];
+  const double cycle = TimeBins::cycle();
+  if (ti_now_ >= cycle) {
+    for (int i = 0; i < nlocal; i++) {
+      if (!(mask[i] & owner_->groupbit)) continue;
+      begin[i] -= cycle;
+      end[i] -= cycle;
+    }
+    ti_now_ -= cycle;
+  }
+  double first_local = INFINITY;
+  for (int i = 0; i < nlocal; i++)
+    if (mask[i] & owner_->groupbit) first_local = std::min(first_local, end[i]);
+  MPI_Allreduce(&first_local, &ti_next_, 1, MPI_DOUBLE, MPI_MIN, world);
+  if (!std::isfinite(ti_next_)) ti_next_ = cycle;    // no particles: one top step
+}
+
+int IndividualSteps::occupied_bins(std::vector<double> *histogram) const
+{
+  std::vector<double> local(TimeBins::MAX_BIN + 1, 0.0), all(TimeBins::MAX_BIN + 1);
+  const double *bin = atom->dvector[idx_.bin];
+  const int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (mask[i] & owner_->groupbit) local[static_cast<int>(bin[i])] += 1.0;
+  MPI_Allreduce(local.data(), all.data(), TimeBins::MAX_BIN + 1, MPI_DOUBLE, MPI_SUM, world);
+  if (histogram) *histogram = all;
+  int occupied = 0;
+  for (double n : all) occupied += n > 0.0;
+  return occupied;
+}
+
+int IndividualSteps::pack_forward_comm(int n, int *list, double *buf)
+{
+  for (int k = 0; k < n; k++)
+    buf[k] = comm_ == Comm::ACTIVE ? static_cast<double>(active_[list[k]]) : bins_[list[k]];
+  return n;
+}
+
+void IndividualSteps::unpack_forward_comm(int n, int first, const double *buf)
+{
+  for (int k = 0; k < n; k++) {
+    if (comm_ == Comm::ACTIVE)
+      active_[first + k] = buf[k] != 0.0;
+    else
+      bins_[first + k] = buf[k];
+  }
+}
+
+int IndividualSteps::pack_reverse_comm(int n, int first, double *buf)
+{
+  for (int k = 0; k < n; k++) buf[k] = required_[first + k];
+  return n;
+}
+
+void IndividualSteps::unpack_reverse_comm(int n, const int *list, const double *buf)
+{
+  for (int k = 0; k < n; k++) required_[list[k]] = std::max(required_[list[k]], buf[k]);
+}
+
+void IndividualSteps::write_restart(std::vector<double> &list) const
+{
+  list.insert(list.end(),
+              {started_ ? 1.0 : 0.0, ti_now_, ti_next_, dt_max_,
+               static_cast<double>(hierarchy_step_), updates_, steps_, woken_});
+}
+
+int IndividualSteps::read_restart(const double *list)
+{
+  started_ = list[0] != 0.0;
+  ti_now_ = list[1];
+  ti_next_ = list[2];
+  dt_max_ = list[3];
+  hierarchy_step_ = static_cast<bigint>(list[4]);
+  updates_ = list[5];
+  steps_ = list[6];
+  woken_ = list[7];
+  return 8;
+}
+
+}    // namespace SPHAstro

@@ -1,0 +1,119 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
+// Individual (hierarchical block) timesteps of fix sph/astro (keyword steps individual):
+// kick-drift-kick with each particle on its own step dt_max / 2^bin (Springel 2005, MNRAS
+// 364, 1105, sec. 4; the time line: sph_astro_time_bins.h). A LAMMPS step goes from one end
+// of a particle step to the next (update->dt varies); the particles whose step ends with it
+// are active:
+//   a step begins     v += a dt_i/2, u += du/dt dt_i/2          (a, du/dt of its last evaluation)
+//   every LAMMPS step x += v dt (all particles); an inactive particle's rho and h follow its
+//                     last div v: rho *= exp(-div v dt), h *= exp(div v dt / d); every
+//                     particle's v and u are predicted to the end of the LAMMPS step,
+//                     v_est = v + a (t - t_mid,i), u_est = u + du/dt (t - t_mid,i)
+//   forces            pair sph/astro evaluates the pairs with an active particle only
+//   a step ends       v += a_new dt_i/2, u += du/dt_new dt_i/2; the new bin from the timestep
+//                     criteria (shorter at once, longer one bin at a time where its grid
+//                     passes), and the timestep limiter (Saitoh & Makino 2009, ApJ 697, L99):
+//                     no particle more than 2^levels times its neighbours' step; a sleeping
+//                     neighbour is woken (Durier & Dalla Vecchia 2012, MNRAS 419, 465): its step
+//                     ends at the next point of the allowed bin's grid, and its first half kick
+//                     (and the drift since) are corrected to the shortened step.
+// Forces on inactive particles (pair, gravity, other fixes) are computed by LAMMPS every step
+// and not used: an inactive particle keeps the acceleration of its last evaluation.
+
+#ifndef LMP_SPH_ASTRO_INDIVIDUAL_STEPS_H
+#define LMP_SPH_ASTRO_INDIVIDUAL_STEPS_H
+
+#include "pointers.h"
+#include "sph_astro_state.h"
+
+#include <vector>
+
+namespace LAMMPS_NS {
+class Fix;
+class PairSPHAstro;
+}    // namespace LAMMPS_NS
+
+namespace SPHAstro {
+
+class IndividualSteps : protected LAMMPS_NS::Pointers {
+ public:
+  // owner: the fix whose communication and group this uses; levels: the limiter (0: off)
+  IndividualSteps(LAMMPS_NS::LAMMPS *lmp, LAMMPS_NS::Fix *owner, int levels);
+
+  // a run: continue the hierarchy where the last run (or the restart file) left it, or start
+  // it anew (first run, or v, u or the particles changed in between)
+  void init(const StateIndex &state, bool state_unchanged);
+  bool continuing() const { return continuing_; }
+  // before the setup's force evaluation: all particles active (a new hierarchy) or none
+  void setup_pre_force(LAMMPS_NS::PairSPHAstro *pair);
+  // a new hierarchy (first step of the run): every particle's acceleration from the setup's
+  // forces, and its bin from wanted (its timestep criteria); the top step dt_max is dtmax (if
+  // > 0), else the largest wanted step; with tend > 0 it is (tend - now) / 2^k, so that tend
+  // lies on the grid
+  void start(const std::vector<double> &wanted, double dtmax, double time_left,
+             LAMMPS_NS::PairSPHAstro *pair);
+  bool started() const { return started_; }
+
+  // LAMMPS' step: first half kicks of the steps that begin, drift, predictions; h_cap > 0:
+  // variable h (fix sph/astro/h), h follows div v up to h_cap; 0: fixed h
+  void kick_drift(double h_cap, bool evolve_u);
+  // the active particles of this step (after reneighbouring), told to pair sph/astro
+  void pre_force(LAMMPS_NS::PairSPHAstro *pair);
+  bool active(int i) const { return active_[i] != 0; }
+  // second half kicks of the active particles; inactive ones get back their f and du/dt
+  void final_kick(bool evolve_u);
+  // the active particles' new bins (wanted: their criteria), the limiter, the next step
+  void end_of_step(const std::vector<double> &wanted, LAMMPS_NS::PairSPHAstro *pair);
+  // the LAMMPS timestep to the next end of a particle step
+  double next_dt() const { return (ti_next_ - ti_now_) * tick(); }
+
+  // figures: active particles this step, particle-updates and LAMMPS steps since the
+  // hierarchy started, occupied bins (collective), particles woken by the limiter
+  double active_count() const { return active_total_; }
+  double updates() const { return updates_; }
+  double steps() const { return steps_; }
+  double woken() const { return woken_; }
+  int occupied_bins(std::vector<double> *histogram = nullptr) const;
+  double dt_max() const { return dt_max_; }
+
+  // forward: active flags or bins to the ghosts; reverse: the limiter's bins (max)
+  int pack_forward_comm(int n, int *list, double *buf);
+  void unpack_forward_comm(int n, int first, const double *buf);
+  int pack_reverse_comm(int n, int first, double *buf);
+  void unpack_reverse_comm(int n, const int *list, const double *buf);
+
+  void write_restart(std::vector<double> &list) const;
+  // returns the number of values read
+  int read_restart(const double *list);
+
+ private:
+  LAMMPS_NS::Fix *owner_;
+  int levels_;
+  StateIndex state_;
+  StepIndex idx_;
+  bool started_ = false, continuing_ = false;
+  double ti_now_ = 0.0, ti_next_ = 0.0;    // ticks: this LAMMPS step's start and end
+  double dt_max_ = 0.0;
+  LAMMPS_NS::bigint hierarchy_step_ = -1;    // the step the hierarchy's state belongs to
+  std::vector<char> active_;
+  std::vector<double> bins_, required_;    // owned and ghost: bins, the limiter's minimum bin
+  enum class Comm { ACTIVE, BINS, REQUIRED } comm_ = Comm::ACTIVE;
+  double active_total_ = 0.0, updates_ = 0.0, steps_ = 0.0, woken_ = 0.0;
+
+  double tick() const;
+  double mass(int i) const;
+  void grow();
+  void assign_bins(const std::vector<double> &wanted, bool fresh, LAMMPS_NS::PairSPHAstro *pair);
+  void limit(LAMMPS_NS::PairSPHAstro *pair);
+  void advance_to_next();
+};
+
+}    // namespace SPHAstro
+
+#endif
