@@ -13,7 +13,9 @@ Rows (``--rows``, default all): ``box1e4``, ``box1e5``, ``box1e6`` (examples/ben
 uniform periodic box, fixed h and dt, 40/20/5 steps), ``box1e5i`` (the same box as the scenes
 run: the h iteration with grad-h terms, skin 0.5 h), ``sedov16``, ``sedov22``, ``sedov35``
 (examples/sedov to t = 0.1), ``noh24`` (examples/noh to t = 0.6), ``evrard`` (examples/evrard,
-n 16, MSM gravity, to t = 0.8), and ``swift35`` and ``swift56``: SWIFT's Sedov at 42 875 and
+n 16, MSM gravity, to t = 0.8), the same scenes with individual timesteps (``sedov16i``,
+``sedov22i``, ``sedov35i``, ``noh24i``, ``evrardi``: ``-var steps individual``; their updates
+are the particle-updates fix sph/astro counts), and ``swift35`` and ``swift56``: SWIFT's Sedov at 42 875 and
 175 616 particles (``--swift-bin``: the swift executable, built with SPHENIX and the cubic
 spline as its repository describes; ``--swift-dir``: a folder with ``swift_sedov.yml`` and
 ``swift_sedov_ic.py ``; 2 threads, ``--hydro --limiter``). SWIFT is never part of this
@@ -22,7 +24,7 @@ repository or of its tests; its rows are skipped when it is absent.
 Each SPH-ASTRO row runs ``mpirun -np NP /usr/bin/time -f %M lmp ...`` and prints
 
 * N, ranks, wall (s, the whole process), loop (s, LAMMPS' loop times summed over the input's
-  runs), steps, updates (N x steps, millions);
+  runs), steps, updates (N x steps, or with individual steps the particles evaluated, millions);
 * Mps/s/core: million particle-steps per second per core; us.core/ps: core-microseconds per
   particle-step; x box: that cost over the uniform box of ~1e5 particles (same kernel and
   hfact: about 58 neighbours inside the M4 support);
@@ -65,15 +67,20 @@ SCENES = {
     "evrard": ("evrard/in.evrard", {"n": 16, "gravity": "msm", "tend": 0.8,
                                     "thermoevery": 100}),
 }
+# the scenes with individual timesteps (fix sph/astro steps individual): row name + "i"
+for _name in ("sedov16", "sedov22", "sedov35", "noh24", "evrard"):
+    _script, _vars = SCENES[_name]
+    SCENES[_name + "i"] = (_script, dict(_vars, steps="individual"))
 SWIFT_ROWS = {"swift35": 35, "swift56": 56}
-ORDER = ["box1e4", "box1e5", "box1e6", "box1e5i", "sedov16", "sedov22", "sedov35", "noh24", "evrard",
-         "swift35", "swift56"]
+ORDER = ["box1e4", "box1e5", "box1e6", "box1e5i", "sedov16", "sedov16i", "sedov22", "sedov22i",
+         "sedov35", "sedov35i", "noh24", "noh24i", "evrard", "evrardi", "swift35", "swift56"]
 
 _LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", re.M)
 _SEARCH = re.compile(r"pair sph/astro neighbour search: .*?per particle: (\S+) half-list "
                      r"entries, (\S+) gather-row entries, (\S+) neighbours inside the kernel "
                      r"support, (\S+) ghost atoms", re.S)
 _RSS = re.compile(r"RSS_KB (\d+)")    # (the ranks' lines may interleave)
+_UPDATES = re.compile(r"fix sph/astro steps individual: (\S+) particle-updates")
 
 
 def run_lammps(name, np_ranks, outdir, env):
@@ -104,6 +111,9 @@ def run_lammps(name, np_ranks, outdir, env):
            "N": int(loops[-1][3]) if loops else 0, "rss_mb": sum(rss) / 1024.0}
     # particle updates: the atoms of each run times its steps (run 0 adds none)
     row["updates"] = sum(int(l[2]) * int(l[3]) for l in loops)
+    individual = _UPDATES.findall(log)    # individual steps: the updates the fix counted
+    if individual:
+        row["updates"] = sum(float(v) for v in individual)
     found = _SEARCH.findall(log)
     row["half"], row["rows"], row["kern"], row["ghosts"] = (
         [float(v) for v in found[-1]] if found else [float("nan")] * 4)

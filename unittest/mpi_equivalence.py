@@ -3,11 +3,11 @@
 # version 2 (the same licence as LAMMPS); see the LICENSE file.
 """MPI equivalence: the same scene on 1, 2, 3 and 4 ranks must give the same particles.
 
-Runs examples/sod/in.sod (short: t = 0.05) with `mpirun -np N lmp`, reads the final dumps
+Runs examples/sod/in.sod (short: t = 0.05; or another scene, --scene) with `mpirun -np N lmp`, reads the final dumps
 and compares every field by atom ID with the 1-rank run. Summation order differs between
 decompositions, so the runs agree to round-off growth, not bit for bit: the bound is a
 relative difference of 1e-9 of each field's scale.
-Usage: mpi_equivalence.py WORKDIR [--ranks 1,2,3,4] [--tol 1e-9] [lmp -var arguments ...]
+Usage: mpi_equivalence.py WORKDIR [--ranks 1,2,3,4] [--tol 1e-9] [--scene sod] [lmp -var arguments ...]
 """
 import argparse
 import os
@@ -22,10 +22,10 @@ from sphastro.dump import read_last_frame  # noqa: E402
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 
 
-def run(workdir, np_ranks, extra):
+def run(workdir, np_ranks, extra, scene="sod"):
     out = os.path.join(workdir, f"dump.np{np_ranks}")
     cmd = ["mpirun", "-np", str(np_ranks), "lmp", "-in",
-           os.path.join(ROOT, "examples", "sod", "in.sod"), "-log",
+           os.path.join(ROOT, "examples", scene, "in." + scene), "-log",
            os.path.join(workdir, f"log.np{np_ranks}"), "-screen", "none",
            "-var", "out", out] + extra
     subprocess.run(cmd, check=True, cwd=workdir)
@@ -39,16 +39,18 @@ def main():
     parser.add_argument("workdir")
     parser.add_argument("--ranks", default="1,2,3,4")
     parser.add_argument("--tol", type=float, default=1e-9)
+    parser.add_argument("--scene", default="sod", help="examples/SCENE/in.SCENE (its dump has "
+                        "x y z vx vy vz rho pressure u)")
     args, extra = parser.parse_known_args()
     if not extra:
         extra = ["-var", "nx", "32", "-var", "ny", "4", "-var", "tend", "0.05"]
     os.makedirs(args.workdir, exist_ok=True)
     ranks = [int(r) for r in args.ranks.split(",")]
-    ref_frame, ref = run(args.workdir, ranks[0], extra)
+    ref_frame, ref = run(args.workdir, ranks[0], extra, args.scene)
     fields = ["x", "y", "z", "vx", "vy", "vz", "rho", "pressure", "u"]
     failed = False
     for n in ranks[1:]:
-        frame, cols = run(args.workdir, n, extra)
+        frame, cols = run(args.workdir, n, extra, args.scene)
         if frame.timestep != ref_frame.timestep or not np.array_equal(cols["id"], ref["id"]):
             print(f"np {n}: different step ({frame.timestep} vs {ref_frame.timestep}) or atoms")
             failed = True

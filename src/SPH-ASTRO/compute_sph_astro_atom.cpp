@@ -10,7 +10,8 @@
 ------------------------------------------------------------------------- */
 
 // compute ID group sph/astro/atom [rho] [h] [pressure] [cs] [u] [nneigh] [divv] [dudt]
-// (all of them, in this order, when none is named). Pressure, sound speed, neighbour count
+// [omega] [alpha] [bin] (rho ... dudt, in this order, when none is named; bin: the time bin
+// of fix sph/astro steps individual, the particle's step is dt_max / 2^bin). Pressure, sound speed, neighbour count
 // and div v are those of the latest force evaluation of pair sph/astro.
 
 #include "compute_sph_astro_atom.h"
@@ -38,8 +39,8 @@ ComputeSPHAstroAtom::ComputeSPHAstroAtom(LAMMPS *lmp, int narg, char **arg) :
   array_ = nullptr;
   pair_ = nullptr;
 
-  static const char *names[] = {"rho",    "h",    "pressure", "cs",    "u",
-                                "nneigh", "divv", "dudt",     "omega", "alpha"};
+  static const char *names[] = {"rho",  "h",    "pressure", "cs",    "u",  "nneigh",
+                                "divv", "dudt", "omega",    "alpha", "bin"};
   const int nnames = sizeof(names) / sizeof(names[0]);
   if (narg == 3)    // the state and hydro fields; omega and alpha when named
     for (int k = 0; k <= DUDT; k++) fields_.push_back(static_cast<Field>(k));
@@ -49,7 +50,7 @@ ComputeSPHAstroAtom::ComputeSPHAstroAtom(LAMMPS *lmp, int narg, char **arg) :
     if (k == nnames)
       error->all(FLERR,
                  "compute sph/astro/atom: unknown field '{}'; allowed: rho, h, pressure, cs, u, "
-                 "nneigh, divv, dudt, omega, alpha",
+                 "nneigh, divv, dudt, omega, alpha, bin",
                  arg[iarg]);
     fields_.push_back(static_cast<Field>(k));
   }
@@ -70,6 +71,13 @@ void ComputeSPHAstroAtom::init()
   if (!pair_) error->all(FLERR, "compute sph/astro/atom requires pair_style sph/astro");
   if (!SPHAstro::find_state(lmp, *state_))
     error->all(FLERR, "compute sph/astro/atom requires fix sph/astro (the per-particle state)");
+  steps_ = SPHAstro::StepIndex();
+  SPHAstro::find_step_state(lmp, steps_);
+  for (int field : fields_)
+    if (field == BIN && steps_.bin < 0)
+      error->all(FLERR,
+                 "compute sph/astro/atom bin: there are no time bins; they belong to fix "
+                 "sph/astro steps individual");
 }
 
 void ComputeSPHAstroAtom::compute_peratom()
@@ -103,7 +111,7 @@ void ComputeSPHAstroAtom::compute_peratom()
   // with pair sph/astro density continuity the counts take a neighbour pass: only if asked
   bool has_nneigh = false;
   for (int field : fields_) has_nneigh = has_nneigh || field == NNEIGH;
-  const double *columns[10] = {atom->dvector[state_->rho],
+  const double *columns[11] = {atom->dvector[state_->rho],
                                atom->dvector[state_->h],
                                static_cast<double *>(pair_->extract_peratom("pressure", ncol)),
                                static_cast<double *>(pair_->extract_peratom("soundspeed", ncol)),
@@ -112,7 +120,8 @@ void ComputeSPHAstroAtom::compute_peratom()
                                static_cast<double *>(pair_->extract_peratom("divv", ncol)),
                                atom->dvector[state_->dudt],
                                gradh_omega ? omega : nullptr,
-                               alpha};
+                               alpha,
+                               steps_.bin >= 0 ? atom->dvector[steps_.bin] : nullptr};
   const int *mask = atom->mask;
   const int nf = static_cast<int>(fields_.size());
   for (int k = 0; k < nf; k++) {

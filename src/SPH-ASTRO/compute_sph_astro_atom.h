@@ -19,12 +19,9 @@ ComputeStyle(sph/astro/atom,ComputeSPHAstroAtom);
 #define LMP_COMPUTE_SPH_ASTRO_ATOM_H
 
 #include "compute.h"
+#include "sph_astro_state.h"
 
 #include <vector>
-
-namespace SPHAstro {
-struct StateIndex;
-}    // namespace SPHAstro
 
 namespace LAMMPS_NS {
 
@@ -37,12 +34,13 @@ class ComputeSPHAstroAtom : public Compute {
   double memory_usage() override;
 
  private:
-  enum Field { RHO, H, PRESSURE, SOUNDSPEED, U, NNEIGH, DIVV, DUDT, OMEGA, ALPHA };
+  enum Field { RHO, H, PRESSURE, SOUNDSPEED, U, NNEIGH, DIVV, DUDT, OMEGA, ALPHA, BIN };
   std::vector<Field> fields_;
   int nmax_;
   double *vector_;
   double **array_;
   SPHAstro::StateIndex *state_;
+  SPHAstro::StepIndex steps_;    // time bins (fix sph/astro steps individual), if any
   class PairSPHAstro *pair_;
 };
 

@@ -326,7 +326,7 @@ void PairSPHAstro::compute(int eflag, int vflag)
       error->all(FLERR, "pair_style sph/astro: the individual-step state fix {} is missing",
                  STEPS_FIX_ID);
     arrays.steps = {active_, atom->dvector[step_index_->omega], atom->dvector[step_index_->balsara],
-                    atom->dvector[step_index_->divv]};
+                    atom->dvector[step_index_->divv], atom->dvector[step_index_->nneigh]};
   }
   PairExchange exchange(this);
   ForceEvaluation evaluation(ctx, *opt_, *scheme_, arrays, exchange);

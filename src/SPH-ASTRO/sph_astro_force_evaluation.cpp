@@ -51,6 +51,8 @@ EvaluationResult ForceEvaluation::run(NeighbourLists &lists, const GradhSettings
     if (o_.balsara) keep(f.balsara, a_.steps.balsara);
     keep(f.divv, a_.steps.divv);
     restore(f.divv, a_.steps.divv);
+    if (result.counted) keep(f.nneigh, a_.steps.nneigh);
+    restore(f.nneigh, a_.steps.nneigh);
   }
   return result;
 }

@@ -46,8 +46,9 @@ class Exchange {
 // h drifted by fix sph/astro), which the force pass reads through the ghosts
 struct ActiveSet {
   const char *active = nullptr;    // per owned and ghost atom; null: global stepping
-  // the last evaluation's values of owned atoms (d_step_omega, d_step_balsara, d_step_divv)
-  double *omega = nullptr, *balsara = nullptr, *divv = nullptr;
+  // the last evaluation's values of owned atoms (d_step_omega, d_step_balsara, d_step_divv,
+  // d_step_nneigh)
+  double *omega = nullptr, *balsara = nullptr, *divv = nullptr, *nneigh = nullptr;
 };
 
 // per-atom state arrays the stages read or write besides those of the PassContext

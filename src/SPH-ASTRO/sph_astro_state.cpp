@@ -129,15 +129,16 @@ void ensure_continuity_state(LAMMPS *lmp, const char *caller)
 }
 
 namespace {
-  const char *const STEP_VECTORS[] = {"step_begin", "step_end",   "step_bin",    "step_dudt",
-                                      "step_divv",  "step_omega", "step_balsara"};
+  const char *const STEP_VECTORS[] = {"step_begin", "step_end",   "step_bin",     "step_dudt",
+                                      "step_divv",  "step_omega", "step_balsara", "step_nneigh"};
 }
 
 bool find_step_state(LAMMPS *lmp, StepIndex &idx)
 {
   int flag, cols;
-  int *fields[] = {&idx.begin, &idx.end, &idx.bin, &idx.dudt, &idx.divv, &idx.omega, &idx.balsara};
-  for (int k = 0; k < 7; k++) {
+  int *fields[] = {&idx.begin, &idx.end,   &idx.bin,     &idx.dudt,
+                   &idx.divv,  &idx.omega, &idx.balsara, &idx.nneigh};
+  for (int k = 0; k < 8; k++) {
     *fields[k] = lmp->atom->find_custom(STEP_VECTORS[k], flag, cols);
     if (*fields[k] < 0 || flag != 1 || cols != 0) return false;
   }
@@ -163,7 +164,7 @@ void ensure_step_state(LAMMPS *lmp, const char *caller)
                       caller, name, STEPS_FIX_ID);
   lmp->modify->add_fix(std::string(STEPS_FIX_ID) +
                        " all property/atom d_step_begin d_step_end d_step_bin d2_step_accel 3 "
-                       "d_step_dudt d_step_divv d_step_omega d_step_balsara");
+                       "d_step_dudt d_step_divv d_step_omega d_step_balsara d_step_nneigh");
 }
 
 }    // namespace SPHAstro

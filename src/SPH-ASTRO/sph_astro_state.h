@@ -85,9 +85,11 @@ bool find_continuity_state(LAMMPS_NS::LAMMPS *lmp, ContinuityIndex &idx);
 //   d_step_divv                div v (drifts rho and h between its evaluations)
 //   d_step_omega               grad-h factor Omega           (set by pair sph/astro)
 //   d_step_balsara             Balsara factor                (set by pair sph/astro)
+//   d_step_nneigh              neighbours inside the kernel support (set by pair sph/astro)
 constexpr const char *STEPS_FIX_ID = "SPH_ASTRO_STEPS";
 struct StepIndex {
-  int begin = -1, end = -1, bin = -1, accel = -1, dudt = -1, divv = -1, omega = -1, balsara = -1;
+  int begin = -1, end = -1, bin = -1, accel = -1, dudt = -1, divv = -1, omega = -1, balsara = -1,
+      nneigh = -1;
 };
 void ensure_step_state(LAMMPS_NS::LAMMPS *lmp, const char *caller);
 bool find_step_state(LAMMPS_NS::LAMMPS *lmp, StepIndex &idx);

@@ -1,0 +1,210 @@
+/* ----------------------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
+// LAMMPS-driven tests of individual timesteps (fix sph/astro steps individual): one bin is the
+// global leapfrog, a hot spot spreads the particles over bins and evaluates fewer of them,
+// the limiter, restarts and continued runs mid-hierarchy, output, and the errors.
+
+#include "styles_fixture.h"
+
+#include "fix.h"
+
+#include <cmath>
+#include <cstdio>
+
+using namespace sph_astro_test;
+
+namespace {
+
+// a periodic box of gas with a hot spot of radius 1 (lattice units) at the centre, u = hot
+void hot_spot(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp, int n, const std::string &fix,
+              double hot = 200.0)
+{
+  gas(lmp, "box", n, PAIR, fix, 0.01, 0.02);
+  const std::string c = num(0.5 * n);
+  commands(lmp,
+           {"velocity all set 0 0 0", "region hot sphere " + c + " " + c + " " + c + " 1.0",
+            "set region hot d_u " + num(hot), "fix hvar all sph/astro/h iterate hfact 1.2"});
+}
+
+double fix_value(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp, const char *id, int n)
+{
+  return lmp->modify->get_fix_by_id(id)->compute_vector(n);
+}
+
+}    // namespace
+
+// with every particle in the top bin (dtmax below every criterion) the scheme is the global
+// kick-drift-kick leapfrog with that step
+TEST(IndividualSteps, OneBinIsTheGlobalLeapfrog)
+{
+  std::map<int, double> x_ref, v_ref, u_ref, h_ref;
+  {
+    auto lmp = open_lammps();
+    gas(lmp, "box", 3, PAIR, "sph/astro dt fixed");
+    commands(lmp, {"fix hvar all sph/astro/h iterate", "timestep 0.002", "run 30"});
+    x_ref = per_atom(lmp, "x", 0);
+    v_ref = per_atom(lmp, "v", 1);
+    u_ref = per_atom(lmp, "u");
+    h_ref = per_atom(lmp, "h");
+  }
+  auto lmp = open_lammps();
+  gas(lmp, "box", 3, PAIR, "sph/astro steps individual dtmax 0.002");
+  commands(lmp, {"fix hvar all sph/astro/h iterate", "run 30"});
+  EXPECT_DOUBLE_EQ(lmp->update->dt, 0.002);
+  EXPECT_EQ(fix_value(lmp, "gas", 4), lmp->atom->natoms);    // all active
+  EXPECT_EQ(fix_value(lmp, "gas", 5), 1.0);                  // one bin
+  auto x = per_atom(lmp, "x", 0);
+  auto v = per_atom(lmp, "v", 1);
+  auto u = per_atom(lmp, "u");
+  auto h = per_atom(lmp, "h");
+  ASSERT_EQ(x.size(), x_ref.size());
+  // (the same steps; a = f/m is kept, so the kicks round differently)
+  for (const auto &[id, value] : x_ref) {
+    EXPECT_NEAR(x[id], value, 1e-12) << id;
+    EXPECT_NEAR(v[id], v_ref[id], 1e-12) << id;
+    EXPECT_NEAR(u[id], u_ref[id], 1e-12) << id;
+    EXPECT_NEAR(h[id], h_ref[id], 1e-12) << id;
+  }
+}
+
+// a hot spot in cold gas: its particles step short, the rest long; far fewer particle-updates
+// than steps x particles; energy and momentum errors stay small
+TEST(IndividualSteps, HotSpotSpreadsParticlesOverBins)
+{
+  auto lmp = open_lammps();
+  hot_spot(lmp, 5, "sph/astro courant 0.3 steps individual tend 0.05");
+  commands(lmp,
+           {"compute bins all sph/astro/atom bin", "thermo_style custom step c_sum[12] f_gas[5]",
+            "run 100000"});
+  const double n = static_cast<double>(lmp->atom->natoms);
+  const double steps = static_cast<double>(lmp->update->ntimestep);
+  EXPECT_NEAR(lmp->update->atime +
+                  (lmp->update->ntimestep - lmp->update->atimestep) * lmp->update->dt,
+              0.05, 1e-12);
+  EXPECT_GE(fix_value(lmp, "gas", 5), 3.0);
+  const double updates = fix_value(lmp, "gas", 6);
+  EXPECT_LT(updates, 0.5 * steps * n) << updates << " updates, " << steps << " steps";
+  EXPECT_GT(updates, n);
+  EXPECT_GT(fix_value(lmp, "gas", 7), 0.0);    // the limiter woke sleeping particles
+  const auto sum = global_vector(lmp, "sum", 12);
+  EXPECT_LT(std::fabs(sum[DEREL]), 2e-2);
+  // momentum: forces on inactive particles are those of their last evaluation, so the total
+  // is not conserved to round-off (the global scheme's is)
+  const double scale = momentum_scale(lmp);
+  for (int k : {PX, PY, PZ}) EXPECT_LT(std::fabs(sum[k]), 2e-2 * scale) << k;
+  // the bins: hot particles in the shortest ones
+  auto *bins = static_cast<double *>(
+      lammps_extract_compute(lmp.get(), "bins", LMP_STYLE_ATOM, LMP_TYPE_VECTOR));
+  ASSERT_NE(bins, nullptr);
+  double lo = 1e9, hi = -1.0;
+  for (int i = 0; i < lmp->atom->nlocal; i++) {
+    lo = std::min(lo, bins[i]);
+    hi = std::max(hi, bins[i]);
+  }
+  EXPECT_GE(hi - lo, 2.0);
+}
+
+// without the limiter a blast runs into sleeping gas: its energy goes wrong
+TEST(IndividualSteps, WithoutTheLimiterABlastIntoSleepingGasGoesWrong)
+{
+  double error[2];
+  for (int on = 0; on < 2; on++) {
+    auto lmp = open_lammps();
+    hot_spot(lmp, 5,
+             std::string("sph/astro courant 0.3 steps individual tend 0.05 limiter ") +
+                 (on ? "2" : "off"),
+             2000.0);
+    commands(lmp, {"run 100000"});
+    error[on] = std::fabs(global_vector(lmp, "sum", 12)[DEREL]);
+    if (!on) EXPECT_EQ(fix_value(lmp, "gas", 7), 0.0);
+  }
+  EXPECT_GT(error[0], 10.0 * error[1]) << error[0] << " " << error[1];
+  EXPECT_LT(error[1], 2e-2);
+}
+
+// a restart mid-hierarchy, and a run split in two, continue bit for bit
+TEST(IndividualSteps, RestartAndSplitRunsContinueBitForBit)
+{
+  const std::string restart = "test_individual_steps.restart";
+  const std::string fix = "sph/astro courant 0.3 steps individual";
+  std::map<int, double> x_ref, v_ref, u_ref, h_ref;
+  double time_ref;
+  {
+    auto lmp = open_lammps();
+    hot_spot(lmp, 4, fix);
+    commands(lmp, {"run 40", "write_restart " + restart, "run 40"});
+    x_ref = per_atom(lmp, "x", 0);
+    v_ref = per_atom(lmp, "v", 1);
+    u_ref = per_atom(lmp, "u");
+    h_ref = per_atom(lmp, "h");
+    time_ref = lmp->update->atime;
+    EXPECT_GE(fix_value(lmp, "gas", 5), 2.0);
+    EXPECT_LT(fix_value(lmp, "gas", 4), lmp->atom->natoms);
+  }
+  auto compare = [&](const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp) {
+    auto x = per_atom(lmp, "x", 0);
+    auto v = per_atom(lmp, "v", 1);
+    auto u = per_atom(lmp, "u");
+    auto h = per_atom(lmp, "h");
+    ASSERT_EQ(x.size(), x_ref.size());
+    for (const auto &[id, value] : x_ref) {
+      EXPECT_NEAR(x[id], value, 1e-14) << "atom " << id;    // (wrapping round-off)
+      EXPECT_EQ(v[id], v_ref[id]) << "atom " << id;
+      EXPECT_EQ(u[id], u_ref[id]) << "atom " << id;
+      EXPECT_EQ(h[id], h_ref[id]) << "atom " << id;
+    }
+    EXPECT_EQ(lmp->update->atime, time_ref);
+  };
+  {
+    auto lmp = open_lammps();
+    commands(lmp,
+             {"read_restart " + restart, "fix gas all " + fix,
+              "fix hvar all sph/astro/h iterate hfact 1.2",
+              "neighbor " + num(0.3 * 1.2 * std::cbrt(0.25)) + " bin",
+              "neigh_modify every 1 delay 0 check yes", "run 40"});
+    compare(lmp);
+  }
+  {
+    auto lmp = open_lammps();
+    hot_spot(lmp, 4, fix);
+    commands(lmp, {"run 40", "run 40"});
+    compare(lmp);
+  }
+  std::remove(restart.c_str());
+}
+
+TEST_F(BadInputTest, IndividualStepsArguments)
+{
+  commands(lmp, {"pair_style " + std::string(PAIR), "pair_coeff * *"});
+  expect_error("fix gas all sph/astro steps some",
+               "steps 'some' is not one of: global, individual");
+  expect_error("fix gas all sph/astro limiter 0", "limiter 0 must be off or a number of bins");
+  expect_error("fix gas all sph/astro steps individual dt fixed", "needs dt adaptive");
+  expect_error("fix gas all sph/astro steps individual xsph 0.5", "xsph is not available");
+}
+
+TEST(IndividualSteps, OptionsItDoesNotCarryAreRefused)
+{
+  for (const std::string &extra :
+       {std::string("fix av all sph/astro/switch morris-monaghan 0.1 1.0 0.1")}) {
+    auto lmp = open_lammps();
+    gas(lmp, "box", 2, PAIR, "sph/astro steps individual");
+    commands(lmp, {extra});
+    EXPECT_NE(error_of(lmp, "run 0").find("not available with individual timesteps"),
+              std::string::npos);
+  }
+  {
+    auto lmp = open_lammps();
+    gas(lmp, "box", 2, PAIR, "sph/astro steps individual thermal entropy");
+    EXPECT_NE(error_of(lmp, "run 0").find("thermal entropy is not available"), std::string::npos);
+  }
+  auto lmp = open_lammps();
+  gas(lmp, "box", 2, PAIR, "sph/astro");
+  commands(lmp, {"compute bins all sph/astro/atom bin"});
+  EXPECT_NE(error_of(lmp, "run 0").find("there are no time bins"), std::string::npos);
+}
