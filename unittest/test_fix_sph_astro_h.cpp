@@ -362,13 +362,13 @@ TEST(NeighbourSearch, ListsAndGhostsFollowGrowingSmoothingLengths)
   std::map<int, double> rho_error;
   const auto ref = expanding_ball("fix hvar all sph/astro/h iterate margin 4.0", ref_stats);
   const auto x = expanding_ball("fix hvar all sph/astro/h iterate margin 1.5", stats, &rho_error);
-  printf("expanding ball, margin 1.5: %.0f ghost widenings, %.0f reneighbourings for h, %.0f "
-         "list builds inside a step, %.0f wide rows; capped %.0f; worst density against brute "
-         "force %.2e\n",
+  printf("expanding ball, margin 1.5: %.0f ghost widenings, %.0f list extensions, %.0f list "
+         "builds inside a step, %.0f wide rows; capped %.0f; worst density against brute force "
+         "%.2e\n",
          stats[4], stats[5], stats[6], stats[7], stats[3], rho_error[0]);
   EXPECT_EQ(ref_stats[4], 0.0);    // margin 4: no widening
   EXPECT_GE(stats[4], 1.0);
-  EXPECT_GE(stats[5] + stats[6], 1.0);    // lists made anew for h: reneighbouring or in a step
+  EXPECT_GE(stats[5] + stats[6], 1.0);    // lists extended or made anew in a step for h
   EXPECT_EQ(stats[3], 0.0);
   EXPECT_LT(rho_error[0], 1e-12);
   ASSERT_EQ(x.size(), ref.size());

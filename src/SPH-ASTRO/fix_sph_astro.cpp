@@ -96,7 +96,7 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
   last_dt_cond_ = 0.0;
   last_limiting_atom_ = 0;
   steps_ = nullptr;
-  limiter_levels_ = 2;
+  limiter_levels_ = 1;
   bool individual = false;
 
   time_integrate = 1;
@@ -171,7 +171,7 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
         if (limiter_levels_ < 1 || limiter_levels_ > 10)
           error->all(FLERR,
                      "fix sph/astro: limiter {} must be off or a number of bins from 1 to 10 (a "
-                     "particle's step at most 2^N times its neighbours'; 2 is usual)",
+                     "particle's step at most 2^N times its neighbours'; 1 by default)",
                      val);
       }
     } else if (key == "dt") {

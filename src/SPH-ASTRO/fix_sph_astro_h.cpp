@@ -72,7 +72,6 @@ FixSPHAstroH::FixSPHAstroH(LAMMPS *lmp, int narg, char **arg) :
   user_cutghost_ = 0.0;
   pending_cutoff_ = 0.0;
   ghost_widenings_ = 0;
-  list_reneighbours_ = 0;
   pair_ = nullptr;
   iterate_flag_ = 1;
 
@@ -192,24 +191,17 @@ void FixSPHAstroH::end_of_step()
   check_limits();
 }
 
-// reneighbour at the next step if an h came near its lists' limit, and widen the ghost
-// cutoff if the largest h came near h_cap (collective); an h that outgrew its lists on a step
-// that widens the ghosts gets its lists with the new ghosts
+// widen the ghost cutoff if the largest h came near h_cap (collective; an h that outgrows its
+// lists inside a step has them extended there: sph_astro_neighbour_lists.h)
 void FixSPHAstroH::check_limits()
 {
   const double *h = atom->dvector[state_->h];
   const int *mask = atom->mask;
   const double grow = PairSPHAstro::LIST_REBUILD;
   const double cap = pair_->h_cap();
-  int outgrown_local = 0, outgrown;
   double hmax_local = 0.0, hmax;
-  for (int i = 0; i < atom->nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    hmax_local = MAX(hmax_local, h[i]);
-    const double limit = pair_->list_limit(i);
-    if (grow * h[i] > limit && limit < cap) outgrown_local = 1;
-  }
-  MPI_Allreduce(&outgrown_local, &outgrown, 1, MPI_INT, MPI_MAX, world);
+  for (int i = 0; i < atom->nlocal; i++)
+    if (mask[i] & groupbit) hmax_local = MAX(hmax_local, h[i]);
   MPI_Allreduce(&hmax_local, &hmax, 1, MPI_DOUBLE, MPI_MAX, world);
   if (grow * hmax > cap && cap < h_max_) {
     // the new cap: room to grow, at most hmax and at most what half the shortest periodic box
@@ -222,10 +214,6 @@ void FixSPHAstroH::check_limits()
       pending_cutoff_ = R * new_cap + skin;
       next_reneighbor = update->ntimestep + 1;
     }
-  }
-  if (outgrown && next_reneighbor != update->ntimestep + 1) {
-    next_reneighbor = update->ntimestep + 1;
-    list_reneighbours_++;
   }
 }
 
@@ -284,7 +272,9 @@ double FixSPHAstroH::compute_vector(int n)
     return all;
   }
   if (n == 4) return static_cast<double>(ghost_widenings_);
-  if (n == 5) return static_cast<double>(list_reneighbours_);
+  if (n == 5) {    // (the extensions are collective: the same count on every rank)
+    return static_cast<double>(pair_->search_statistics().extensions);
+  }
   if (n == 6 || n == 7) {
     const SPHAstro::SearchStatistics &search = pair_->search_statistics();
     bigint local = n == 6 ? search.step_builds : search.wide_rows, all = 0;

@@ -63,7 +63,6 @@ class FixSPHAstroH : public Fix {
   double user_cutghost_;                  // comm_modify cutoff when the run began
   double pending_cutoff_;                 // ghost cutoff for the next reneighbouring step (0: none)
   bigint ghost_widenings_;                // ghost cutoffs widened since the fix was defined
-  bigint list_reneighbours_;    // reneighbourings asked for because h neared its lists' limit
   void check_limits();
 
   SPHAstro::StateIndex *state_;

@@ -192,17 +192,18 @@ void PairSPHAstro::finish()
   for (int i = 0; i < atom->nlocal; i++) local[2] += nneigh[i];
   double all[6];
   MPI_Allreduce(local, all, 6, MPI_DOUBLE, MPI_SUM, world);
-  bigint builds[2] = {s.builds, s.step_builds}, builds_max[2];
-  MPI_Allreduce(builds, builds_max, 2, MPI_LMP_BIGINT, MPI_MAX, world);
+  bigint builds[3] = {s.builds, s.step_builds, s.extensions}, builds_max[3];
+  MPI_Allreduce(builds, builds_max, 3, MPI_LMP_BIGINT, MPI_MAX, world);
   if (comm->me != 0) return;
   const double atoms = MAX(all[3], 1.0);
   utils::logmesg(lmp,
                  "pair sph/astro neighbour search: lists made {} times after LAMMPS' builds "
-                 "and {} times inside a step (most on a rank); per particle: {:.1f} half-list "
-                 "entries, {:.1f} gather-row entries, {:.1f} neighbours inside the kernel "
-                 "support, {:.2f} ghost atoms, {:.0f} bytes of lists and tree\n",
-                 builds_max[0], builds_max[1], all[0] / atoms, all[1] / atoms, all[2] / atoms,
-                 all[4] / atoms, all[5] / atoms);
+                 "and {} times inside a step, extended {} times inside a step for grown h "
+                 "(most on a rank); per particle: {:.1f} half-list entries, {:.1f} gather-row "
+                 "entries, {:.1f} neighbours inside the kernel support, {:.2f} ghost atoms, "
+                 "{:.0f} bytes of lists and tree\n",
+                 builds_max[0], builds_max[1], builds_max[2], all[0] / atoms, all[1] / atoms,
+                 all[2] / atoms, all[4] / atoms, all[5] / atoms);
 }
 
 double PairSPHAstro::init_one(int i, int j)
@@ -313,7 +314,7 @@ void PairSPHAstro::compute(int eflag, int vflag)
   }
 
   PassContext ctx = context();
-  EvaluationArrays arrays{atom->dvector[state_->h], nullptr, nullptr, {}};
+  EvaluationArrays arrays{atom->dvector[state_->h], nullptr, nullptr, {}, {}};
   if (opt_->density_continuity) {
     arrays.rhoest = atom->dvector[continuity_index_->rhoest];
     arrays.drhodt = atom->dvector[continuity_index_->drhodt];
@@ -422,11 +423,6 @@ void PairSPHAstro::read_restart_settings(FILE *fp)
 {
   opt_->read_restart(lmp, fp);
   kernel_radius_ = opt_->kernel_radius();
-}
-
-double PairSPHAstro::list_limit(int i) const
-{
-  return lists_->built() ? lists_->limit(i) : h_cap_;
 }
 
 const SearchStatistics &PairSPHAstro::search_statistics() const

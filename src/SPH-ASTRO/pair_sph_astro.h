@@ -109,11 +109,9 @@ class PairSPHAstro : public Pair {
   // kernel radius x margin x the largest h + skin
   double h_cap() const { return h_cap_; }
   double kernel_radius() const { return kernel_radius_; }
-  // the largest h atom i (owned or ghost) may take before its lists are made again; fix
-  // sph/astro/h has LAMMPS reneighbour when LIST_REBUILD h_i exceeds it
-  double list_limit(int i) const;
-  static constexpr double LIST_GROWTH = 1.1;      // room for h to grow, variable h
-  static constexpr double LIST_REBUILD = 1.05;    // reneighbour when LIST_REBUILD h > limit
+  static constexpr double LIST_GROWTH = 1.1;    // room for h to grow in the lists, variable h
+  // fix sph/astro/h widens the ghost cutoff when LIST_REBUILD x the largest h exceeds h_cap
+  static constexpr double LIST_REBUILD = 1.05;
   const SPHAstro::SearchStatistics &search_statistics() const;
 
   // individual timesteps (fix sph/astro steps individual): the owned and ghost atoms whose

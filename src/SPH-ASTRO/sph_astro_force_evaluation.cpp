@@ -32,7 +32,10 @@ EvaluationResult ForceEvaluation::run(NeighbourLists &lists, const GradhSettings
   }
   if (!scheme_.gradh()) ctx_.half = evaluated_pairs(lists);
   density(iteration, hstats, initialise_density, result);
-  if (scheme_.gradh()) ctx_.half = evaluated_pairs(lists);    // h is that of the iteration now
+  if (scheme_.gradh()) {    // h is that of the iteration now, on the ghosts too
+    exchange_.forward({{a_.h, nullptr, 1, false}});
+    ctx_.half = evaluated_pairs(lists);
+  }
   if (individual() && scheme_.gradh()) restore(f.omega, a_.steps.omega);
   equation_of_state(initialise_entropy);
   gradients();
@@ -145,7 +148,6 @@ void ForceEvaluation::forward_state()
                      {f.pressure, nullptr, 1, false},
                      {f.soundspeed, nullptr, 1, false},
                      {nullptr, ctx_.vest, 3, false},
-                     {gradh ? a_.h : nullptr, nullptr, 1, false},
                      {gradh ? f.omega : nullptr, nullptr, 1, false},
                      {gradh && o_.pressure_energy ? f.pe_gradh : nullptr, nullptr, 1, false},
                      {ctx_.alpha, nullptr, 1, false},

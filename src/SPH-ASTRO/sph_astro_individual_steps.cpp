@@ -259,15 +259,24 @@ void IndividualSteps::limit(PairSPHAstro *pair)
   comm_ = Comm::BINS;
   comm->forward_comm(owner_, 1);
   std::fill(required_.begin(), required_.begin() + nall, -1.0);
+  // neighbours: the list pairs inside a kernel support, r < R max(h_i, h_j) (the lists also
+  // hold farther pairs, which on one rank may lie beyond another's ghosts)
   const NeighView &pairs = pair->evaluated_pairs();
   const double levels = levels_;
+  const double R = pair->kernel_radius();
+  double **x = atom->x;
+  const double *h = atom->dvector[state_.h];
   for (int ii = 0; ii < pairs.inum; ii++) {
     const int i = pairs.ilist[ii];
     const int *row = pairs.firstneigh[i];
     double need_i = required_[i];
     const double bi = bins_[i] - levels;
+    const double xi = x[i][0], yi = x[i][1], zi = x[i][2], hi = h[i];
     for (int k = 0; k < pairs.numneigh[i]; k++) {
       const int j = row[k] & NEIGHMASK;
+      const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
+      const double reach = R * std::max(hi, h[j]);
+      if (dx * dx + dy * dy + dz * dz >= reach * reach) continue;
       need_i = std::max(need_i, bins_[j] - levels);
       required_[j] = std::max(required_[j], bi);
     }
@@ -278,7 +287,6 @@ void IndividualSteps::limit(PairSPHAstro *pair)
 
   const double t = tick();
   const int *mask = atom->mask;
-  double **x = atom->x;
   double **v = atom->v;
   double *u = atom->dvector[state_.u];
   double *bin = atom->dvector[idx_.bin];

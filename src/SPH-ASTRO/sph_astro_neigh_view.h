@@ -37,18 +37,20 @@ struct HalfFromFull {
   // (without data-dependent branches in an orthogonal box: bitwise operations on the
   // comparisons; test NeighbourSearch.BranchFreeHalfRuleIsLAMMPSRule checks them against
   // npair_halffull.cpp's early returns)
-  bool keeps(double **x, int i, int j) const
+  bool keeps(double **x, int i, int j) const { return keeps_at(x[i], x[j], i, j); }
+  // the same with the positions given (the lists decide pairs they add inside a step at the
+  // positions of their build, as the build did)
+  bool keeps_at(const double *xi, const double *xj, int i, int j) const
   {
     if (!newton) return j > i;
     if (triclinic) {
       if (j < nlocal) return i < j;
-      const double *xi = x[i], *xj = x[j];
       if (std::fabs(xj[2] - xi[2]) > delta) return xj[2] >= xi[2];
       if (std::fabs(xj[1] - xi[1]) > delta) return xj[1] >= xi[1];
       return xj[0] >= xi[0];
     }
     const bool owned = j < nlocal;
-    return (owned & (i < j)) | (!owned & above(x[i], x[j]));
+    return (owned & (i < j)) | (!owned & above(xi, xj));
   }
   // not below: z, then y, then x (npair_halffull.cpp, newton on, orthogonal box)
   static bool above(const double *xi, const double *xj)

@@ -78,16 +78,111 @@ NeighView NeighbourLists::half(const double *h)
 {
   const int nall = atom->nlocal + atom->nghost;
   const double *hl = hl_.data();
-  bool outgrown = false;
-  for (int i = 0; i < nall; i++) outgrown |= h[i] > hl[i];
-  if (outgrown) {
+  int outgrown = 0;
+  for (int i = 0; i < nall; i++) outgrown += h[i] > hl[i];
+  // (collective: a pair two ranks share is decided alike on both)
+  double share = nall > 0 ? static_cast<double>(outgrown) / nall : 0.0, largest;
+  MPI_Allreduce(&share, &largest, 1, MPI_DOUBLE, MPI_MAX, world);
+  if (largest > 0.0) {
     // atoms are up to skin/2 from LAMMPS' last build and go up to skin/2 from it before the
     // next one: up to skin from here, pairs up to 2 skin closer
-    build(h, 2.0 * neighbor->skin);
-    motion_ = neighbor->skin;
-    stats_.step_builds++;
+    if (largest > EXTEND_LIMIT) {
+      build(h, 2.0 * neighbor->skin);
+      motion_ = neighbor->skin;
+      stats_.step_builds++;
+    } else
+      extend(h, 2.0 * neighbor->skin);
   }
   return half_.view(inum_, ilist_.data());
+}
+
+bool NeighbourLists::row_of_pair(int a, int b, int &row, int &partner) const
+{
+  const int nlocal = atom->nlocal;
+  if (a < nlocal && b < nlocal) {    // owned pairs: in the row of the lower index
+    row = a < b ? a : b;
+    partner = a < b ? b : a;
+    return true;
+  }
+  if (a >= nlocal && b >= nlocal) return false;    // two ghosts: not on this rank
+  const int owned = a < nlocal ? a : b, ghost = a < nlocal ? b : a;
+  if (!half_rule_.keeps_at(tree_.build_position(tree_.slot(owned)),
+                           tree_.build_position(tree_.slot(ghost)), owned, ghost))
+    return false;
+  row = owned;
+  partner = ghost;
+  return true;
+}
+
+// the atoms whose h outgrew hl get hl = growth h; every pair their wider reach finds (at the
+// current positions, the tree's bound on how far atoms moved since its build) that the lists
+// lack is added to its row, and their gather rows are made anew
+void NeighbourLists::extend(const double *h, double pad)
+{
+  double **x = atom->x;
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  const SearchSettings &s = settings_;
+  const double R = s.kernel_radius;
+  grown_.clear();
+  for (int i = 0; i < nall; i++) {
+    if (!(h[i] > hl_[i])) continue;
+    if (tree_.slot(i) < 0) {    // not an SPH atom: no pairs
+      hl_[i] = h[i];
+      continue;
+    }
+    hl_[i] = std::min(s.growth * h[i], s.h_cap);
+    radius_[i] = R * hl_[i];
+    grown_.push_back(i);
+  }
+  tree_.update_radii(radius_.data());
+  inserts_.clear();
+  for (int p : grown_)
+    tree_.query(x, radius_.data(), x[p], radius_[p], pad, motion_, [&](int j, double) {
+      int row, partner;
+      if (j != p && row_of_pair(p, j, row, partner)) inserts_.emplace_back(row, partner);
+    });
+  std::sort(inserts_.begin(), inserts_.end());
+  inserts_.erase(std::unique(inserts_.begin(), inserts_.end()), inserts_.end());
+  // each row with new partners: merged in atom order, stored anew
+  for (std::size_t k = 0; k < inserts_.size();) {
+    const int i = inserts_[k].first;
+    std::size_t end = k;
+    while (end < inserts_.size() && inserts_[end].first == i) end++;
+    const int *row = half_.firstneigh[i];
+    const int n = half_.numneigh[i];
+    merged_.clear();
+    int a = 0;
+    for (std::size_t b = k; b < end; b++) {
+      const int j = inserts_[b].second;
+      while (a < n && row[a] < j) merged_.push_back(row[a++]);
+      if (a < n && row[a] == j) continue;    // already held
+      merged_.push_back(j);
+    }
+    while (a < n) merged_.push_back(row[a++]);
+    stats_.extension_pairs += static_cast<LAMMPS_NS::bigint>(merged_.size()) - n;
+    if (static_cast<int>(merged_.size()) > n) {
+      half_.firstneigh[i] = half_.rows.append(merged_.data(), static_cast<int>(merged_.size()));
+      half_.numneigh[i] = static_cast<int>(merged_.size());
+    }
+    k = end;
+  }
+  // gather rows of the grown owned atoms: r < R hl_i + pad
+  if (s.full)
+    for (int p : grown_) {
+      if (p >= nlocal) continue;
+      const double reach = radius_[p] + pad;
+      merged_.clear();
+      tree_.query(x, radius_.data(), x[p], radius_[p], pad, motion_, [&](int j, double r2) {
+        if (j != p && r2 < reach * reach) merged_.push_back(j);
+      });
+      std::sort(merged_.begin(), merged_.end());
+      full_.firstneigh[p] = full_.rows.append(merged_.data(), static_cast<int>(merged_.size()));
+      full_.numneigh[p] = static_cast<int>(merged_.size());
+    }
+  due_indexed_ = false;
+  stats_.extensions++;
+  stats_.extended_atoms += static_cast<LAMMPS_NS::bigint>(grown_.size());
 }
 
 void NeighbourLists::build(const double *h, double pad)
@@ -123,7 +218,8 @@ void NeighbourLists::build(const double *h, double pad)
   inum_ = static_cast<int>(ilist_.size());
   tree_.build(x, radius_.data(), members_.data(), static_cast<int>(members_.size()));
 
-  const HalfFromFull half_rule{nlocal, s.newton, domain->triclinic != 0, 0.01 * force->angstrom};
+  half_rule_ = {nlocal, s.newton, domain->triclinic != 0, 0.01 * force->angstrom};
+  const HalfFromFull &half_rule = half_rule_;
   half_.rows.reset();
   full_.rows.reset();
   due_indexed_ = false;

@@ -15,9 +15,12 @@
 //               for newton on and off, sph_astro_neigh_view.h)
 //   full list:  j with r_ij < R hl_i + pad (the gather rows of the h-rho iteration; grad-h only)
 // They are made when LAMMPS has built its neighbour structures (reneighbouring: no atom has
-// moved more than skin/2 since, pad = skin), and at once, inside a step, when an h outgrows
-// its hl (pad = 2 skin: atoms have moved up to skin/2 before and up to skin/2 after, relative to
-// LAMMPS' last build). While every h <= hl, every pair inside a kernel support is in the lists,
+// moved more than skin/2 since, pad = skin). When h outgrows hl inside a step (pad = 2 skin:
+// atoms have moved up to skin/2 before and up to skin/2 after, relative to LAMMPS' last
+// build), the lists are extended: the grown atoms get hl = growth h, and the pairs their wider
+// reach finds are added to the rows that hold them by the half rule at the build's positions
+// (as the build decided, on every rank alike); when more than EXTEND_LIMIT of the atoms grew,
+// they are made anew instead. While every h <= hl, every pair inside a kernel support is in the lists,
 // so each sum over them is the sum over all particles. h_cap follows LAMMPS' ghost cutoff:
 // (cutoff - skin) / R, the largest support inside which all particles are owned or ghosts.
 
@@ -31,6 +34,7 @@
 #include "sph_astro_passes.h"
 
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace SPHAstro {
@@ -71,9 +75,12 @@ struct SearchSettings {
 };
 
 struct SearchStatistics {
-  LAMMPS_NS::bigint builds = 0;         // list builds after LAMMPS' builds
-  LAMMPS_NS::bigint step_builds = 0;    // builds inside a step because an h outgrew its list
-  LAMMPS_NS::bigint wide_rows = 0;      // h iterations that went past their row's limit
+  LAMMPS_NS::bigint builds = 0;             // list builds after LAMMPS' builds
+  LAMMPS_NS::bigint step_builds = 0;        // builds inside a step because many h outgrew the lists
+  LAMMPS_NS::bigint extensions = 0;         // lists extended inside a step for the h that grew
+  LAMMPS_NS::bigint extended_atoms = 0;     // atoms whose hl grew in the extensions
+  LAMMPS_NS::bigint extension_pairs = 0;    // pairs the extensions added to the half list
+  LAMMPS_NS::bigint wide_rows = 0;          // h iterations that went past their row's limit
   double half_entries = 0.0, full_entries = 0.0;    // per atom, latest build (this rank)
   int atoms = 0;                                    // owned SPH atoms, latest build
 };
@@ -86,8 +93,11 @@ class NeighbourLists : protected LAMMPS_NS::Pointers {
   void update(const double *h, const SearchSettings &s);
   // a run begins (its setup rebuilds LAMMPS' structures, possibly at the same step)
   void invalidate() { stale_ = true; }
-  // the half list, made again first if an h (owned or ghost) outgrew its hl
+  // the half list, extended (or made again) first if an h (owned or ghost) outgrew its hl;
+  // collective: every rank decides alike
   NeighView half(const double *h);
+  static constexpr double EXTEND_LIMIT =
+      0.1;    // share of grown atoms above which lists are made anew
   NeighView full() const { return full_.view(inum_, ilist_.data()); }
   // individual steps: the pairs of half (the view half() returned) with an active atom
   NeighView due(const NeighView &half, const char *active);
@@ -131,6 +141,14 @@ class NeighbourLists : protected LAMMPS_NS::Pointers {
   } wide_{this};
 
   void build(const double *h, double pad);
+  void extend(const double *h, double pad);
+  // the owned atom whose half-list row holds pair (a, b) by the half rule at the build's
+  // positions, and its partner; false if no row on this rank holds it
+  bool row_of_pair(int a, int b, int &row, int &partner) const;
+  HalfFromFull half_rule_{0, false, false, 0.0};
+  std::vector<int> grown_;
+  std::vector<std::pair<int, int>> inserts_;
+  std::vector<int> merged_;
 };
 
 }    // namespace SPHAstro

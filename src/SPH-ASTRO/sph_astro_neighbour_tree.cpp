@@ -16,16 +16,36 @@ void NeighbourTree::build(double **x, const double *radius, const int *index, in
   perm_.assign(index, index + n);
   nodes_.clear();
   leaves_.clear();
+  slot_.clear();
   if (n == 0) return;
   nodes_.reserve(4 * (n / LEAF_SIZE + 1));
   nodes_.emplace_back();
   make_node(x, radius, 0, 0, n);
   pos_.resize(3 * static_cast<std::size_t>(n));
   rad_.resize(n);
+  int top = 0;
+  for (int k = 0; k < n; k++) top = std::max(top, perm_[k] + 1);
+  slot_.assign(top, -1);
   for (int k = 0; k < n; k++) {
     const int j = perm_[k];
     for (int d = 0; d < 3; d++) pos_[3 * k + d] = x[j][d];
     rad_[k] = radius[j];
+    slot_[j] = k;
+  }
+}
+
+// (children are stored after their parent: one backward sweep sees them first)
+void NeighbourTree::update_radii(const double *radius)
+{
+  const int n = static_cast<int>(perm_.size());
+  for (int k = 0; k < n; k++) rad_[k] = radius[perm_[k]];
+  for (int id = static_cast<int>(nodes_.size()) - 1; id >= 0; id--) {
+    Node &node = nodes_[id];
+    if (node.left < 0) {
+      node.rmax = 0.0;
+      for (int k = node.begin; k < node.end; k++) node.rmax = std::max(node.rmax, rad_[k]);
+    } else
+      node.rmax = std::max(nodes_[node.left].rmax, nodes_[node.left + 1].rmax);
   }
 }
 

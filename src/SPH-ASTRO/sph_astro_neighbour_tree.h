@@ -41,6 +41,11 @@ class NeighbourTree {
   int leaf_begin(int l) const { return nodes_[leaves_[l]].begin; }
   int leaf_end(int l) const { return nodes_[leaves_[l]].end; }
   int point(int k) const { return perm_[k]; }
+  // the tree position of point index p (-1 if not in the tree), and its position at the build
+  int slot(int p) const { return p < static_cast<int>(slot_.size()) ? slot_[p] : -1; }
+  const double *build_position(int k) const { return &pos_[3 * static_cast<std::size_t>(k)]; }
+  // new search radii (radius[], per point as at the build): the nodes' largest radii follow
+  void update_radii(const double *radius);
 
   // visit(j, r2) for every point j of the tree with |x_j - c|^2 = r2 < (max(rc, radius_j) +
   // pad)^2, at the current positions x; motion: how far points may have moved since the build
@@ -138,7 +143,8 @@ class NeighbourTree {
   {
     return static_cast<double>(
         nodes_.capacity() * sizeof(Node) +
-        (perm_.capacity() + leaves_.capacity() + candidates_.capacity() + found_.capacity()) *
+        (perm_.capacity() + leaves_.capacity() + candidates_.capacity() + found_.capacity() +
+         slot_.capacity()) *
             sizeof(int) +
         (pos_.capacity() + rad_.capacity() + keys_.capacity() + cand_.capacity()) * sizeof(double));
   }
@@ -151,7 +157,7 @@ class NeighbourTree {
     int left;          // children left, left + 1; -1: leaf
   };
   std::vector<Node> nodes_;
-  std::vector<int> perm_, leaves_, candidates_, found_;
+  std::vector<int> perm_, leaves_, candidates_, found_, slot_;
   std::vector<double> pos_, rad_;    // positions and radii at the build, in tree order
   std::vector<unsigned long long> keys_;
   std::vector<double> cand_;    // x, y, z, r of a leaf's candidates
