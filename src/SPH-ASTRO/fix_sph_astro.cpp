@@ -706,8 +706,7 @@ void FixSPHAstro::check_individual_options()
       : o.physical_conduction() ? "pair_style sph/astro conduction"
       : o.reconstruction()      ? "pair_style sph/astro reconstruct"
       : o.pressure_energy       ? "pair_style sph/astro formulation pressure-energy"
-      : !modify->get_fix_by_style("^sph/astro/switch$").empty() ? "fix sph/astro/switch"
-                                                                : nullptr;
+                                : nullptr;
   if (what)
     error->all(FLERR,
                "fix sph/astro steps individual: {} is not available with individual timesteps "
@@ -734,6 +733,15 @@ void FixSPHAstro::wanted_steps(bool all)
     if (dtmax_ > 0.0) dt = MIN(dt, dtmax_);
     wanted_[i] = dt;
   }
+}
+
+bool FixSPHAstro::own_step(int i, double &dt) const
+{
+  if (!steps_) {
+    dt = update->dt;
+    return true;
+  }
+  return steps_->own_step(i, dt);
 }
 
 // LAMMPS' next step: to the next end of a particle step

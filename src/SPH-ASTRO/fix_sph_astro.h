@@ -58,6 +58,11 @@ class FixSPHAstro : public Fix {
   // "entropy": 1 when the thermal variable is the entropic function A (P = A rho^gamma)
   void *extract(const char *, int &) override;
 
+  // the step of owned atom i that ends with this step: true if i was evaluated at this step
+  // (always with global steps), with its length dt (update->dt with global steps, its own with
+  // steps individual); for fixes that integrate per-particle state (fix sph/astro/switch)
+  bool own_step(int i, double &dt) const;
+
   // reference total energy of a compute sph/astro/global (by compute ID): set at its first
   // evaluation, kept across restarts
   double reference_energy(const std::string &compute_id, double current);

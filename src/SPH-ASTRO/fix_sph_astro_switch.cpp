@@ -21,6 +21,8 @@
 
 #include "fix_sph_astro_switch.h"
 
+#include "fix_sph_astro.h"
+
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
@@ -52,6 +54,7 @@ FixSPHAstroSwitch::FixSPHAstroSwitch(LAMMPS *lmp, int narg, char **arg) : Fix(lm
   needs_curl_ = 0;
   h_index_ = -1;
   pair_ = nullptr;
+  integrator_ = nullptr;
 
   vector_flag = 1;
   size_vector = 2;
@@ -138,6 +141,10 @@ void FixSPHAstroSwitch::init()
 {
   pair_ = dynamic_cast<PairSPHAstro *>(force->pair_match("^sph/astro$", 0, 0));
   if (!pair_) error->all(FLERR, "fix sph/astro/switch requires pair_style sph/astro");
+  auto integrators = modify->get_fix_by_style("^sph/astro$");
+  integrator_ = integrators.empty() ? nullptr : dynamic_cast<FixSPHAstro *>(integrators.front());
+  if (!integrator_)
+    error->all(FLERR, "fix sph/astro/switch requires fix sph/astro (alpha follows its steps)");
   SPHAstro::StateIndex state;
   if (!SPHAstro::find_state(lmp, state) || modify->get_fix_by_style("^sph/astro$").empty())
     error->all(FLERR, "fix sph/astro/switch requires fix sph/astro");
@@ -162,6 +169,8 @@ void FixSPHAstroSwitch::setup(int /*vflag*/)
   for (int i = 0; i < atom->nlocal; i++) prev[i] = divv[i];
 }
 
+// alpha over each particle's own step: every particle with global steps, the particles
+// evaluated at this step with individual ones (fix sph/astro own_step())
 void FixSPHAstroSwitch::final_integrate()
 {
   const double *divv = pair_->fields().divv;
@@ -169,11 +178,11 @@ void FixSPHAstroSwitch::final_integrate()
   const double *h = atom->dvector[h_index_];
   double *a = alpha();
   const int *mask = atom->mask;
-  const double dt = update->dt;
   const int nlocal = atom->nlocal;
+  double dt;
   if (form_ == Form::MORRIS_MONAGHAN) {
     for (int i = 0; i < nlocal; i++)
-      if (mask[i] & groupbit)
+      if ((mask[i] & groupbit) && integrator_->own_step(i, dt))
         a[i] = SPHAstro::switch_morris_monaghan(a[i], divv[i], cs[i], h[i], dt, alpha_min_,
                                                 alpha_max_, ell_);
     return;
@@ -183,6 +192,7 @@ void FixSPHAstroSwitch::final_integrate()
   if (!curlv || !prev)
     error->all(FLERR, "fix sph/astro/switch cullen-dehnen: curl v or d_divv_prev is missing");
   for (int i = 0; i < nlocal; i++) {
+    if (!integrator_->own_step(i, dt)) continue;
     if (mask[i] & groupbit) {
       const double ddivvdt = (divv[i] - prev[i]) / dt;
       a[i] = SPHAstro::switch_cullen_dehnen(a[i], divv[i], ddivvdt, curlv[i], cs[i], h[i], dt,

@@ -57,6 +57,7 @@ class FixSPHAstroSwitch : public Fix {
   int needs_curl_;
   int h_index_;    // d_h
   class PairSPHAstro *pair_;
+  class FixSPHAstro *integrator_;    // fix sph/astro: each particle's step
 };
 
 }    // namespace LAMMPS_NS

@@ -29,6 +29,7 @@
 #ifndef LMP_SPH_ASTRO_INDIVIDUAL_STEPS_H
 #define LMP_SPH_ASTRO_INDIVIDUAL_STEPS_H
 
+#include "atom.h"
 #include "pointers.h"
 #include "sph_astro_state.h"
 
@@ -66,6 +67,13 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   // the active particles of this step (after reneighbouring), told to pair sph/astro
   void pre_force(LAMMPS_NS::PairSPHAstro *pair);
   bool active(int i) const { return active_[i] != 0; }
+  // owned atom i was evaluated at this step (its step ends with it); dt: its step's length
+  bool own_step(int i, double &dt) const
+  {
+    const double *begin = atom->dvector[idx_.begin], *end = atom->dvector[idx_.end];
+    dt = (end[i] - begin[i]) * tick();
+    return active_[i] != 0;
+  }
   // second half kicks of the active particles; inactive ones get back their f and du/dt
   void final_kick(bool evolve_u);
   // the active particles' new bins (wanted: their criteria), the limiter, the next step
