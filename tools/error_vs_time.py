@@ -229,7 +229,11 @@ SCENES: Dict[str, Scene] = {
         plot=("energy", "wmin"), fit="energy",
         notes="Evrard collapse, 3D, to t = 3: N ~ 2.1 n^3; dE_max: largest |relative total-energy "
               "error| over the run; -W_min: depth of the potential energy at maximum compression "
-              "(no exact value: watch it converge with N)"),
+              "(no exact value: watch it converge with N)",
+        presets={"steps": Preset(
+            resolutions=(6, 8, 12), np=2, var=(), variants="steps=global;steps=individual",
+            reference_label="no peer code run", reference=(),
+            notes="Evrard collapse with global and individual timesteps, 2 MPI ranks")}),
 
     "sod": Scene(
         input="examples/sod/in.sod", res_var="nx", out_var="out",
@@ -270,7 +274,16 @@ SCENES: Dict[str, Scene] = {
         plot=("rho", "rshock"), fit="rho",
         notes="Sedov-Taylor, 3D, t = 0.1: N = 4 n^3; L1 over r < 1.2 R_s; Rs_err: |relative "
               "error| of the shock radius (binned density peak; half height of the jump)",
-        physics="switch=no;switch=mm;switch=cd;recon=yes"),
+        physics="switch=no;switch=mm;switch=cd;recon=yes",
+        presets={"steps": Preset(
+            # global against individual timesteps (fix sph/astro steps individual), 2 ranks;
+            # SWIFT's Sedov (SPHENIX, cubic spline, --hydro --limiter, 2 threads) measured by
+            # tools/benchmark_scenes.py in one script with SPH-ASTRO's rows, its L1(rho) by
+            # tools/swift_sedov_errors.py on its t = 0.1 snapshot
+            resolutions=(12, 16, 22), np=2, var=(), variants="steps=global;steps=individual",
+            reference_label="SWIFT (2 threads)",
+            reference=((42875, 10.4, 0.448), (175616, 44.3, 0.398)),
+            notes="Sedov with global and individual timesteps, 2 MPI ranks")}),
     "toystar": Scene(
         input="examples/toystar/in.toystar", res_var="n", out_var="out",
         default_res=(8, 12, 16), analyse=analyse_toystar,
