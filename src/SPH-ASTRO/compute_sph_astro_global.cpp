@@ -104,19 +104,26 @@ void ComputeSPHAstroGlobal::compute_vector()
   double unwrap[3];
   const double *h = atom->dvector[state_->h];
   double hrange[2] = {INFINITY, -INFINITY};    // -hmin, hmax for one MPI_MAX
+  // with individual steps a particle inside its step enters with v and u at the current time
+  // (its predictions), not those of the middle of its step
+  double **vest = atom->darray[state_->vest];
+  const double *uest = atom->dvector[state_->uest];
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     const double m = rmass ? rmass[i] : mass[type[i]];
+    const bool mid = fix_ && fix_->mid_step(i);
+    const double *vi = mid ? vest[i] : v[i];
+    const double ui = mid ? uest[i] : u[i];
     domain->unmap(x[i], image[i], unwrap);
     local[MASS] += m;
-    local[PX] += m * v[i][0];
-    local[PY] += m * v[i][1];
-    local[PZ] += m * v[i][2];
-    local[LX] += m * (unwrap[1] * v[i][2] - unwrap[2] * v[i][1]);
-    local[LY] += m * (unwrap[2] * v[i][0] - unwrap[0] * v[i][2]);
-    local[LZ] += m * (unwrap[0] * v[i][1] - unwrap[1] * v[i][0]);
-    local[EKIN] += 0.5 * m * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
-    local[ETHERM] += m * eos.energy_of(rho[i], u[i]);
+    local[PX] += m * vi[0];
+    local[PY] += m * vi[1];
+    local[PZ] += m * vi[2];
+    local[LX] += m * (unwrap[1] * vi[2] - unwrap[2] * vi[1]);
+    local[LY] += m * (unwrap[2] * vi[0] - unwrap[0] * vi[2]);
+    local[LZ] += m * (unwrap[0] * vi[1] - unwrap[1] * vi[0]);
+    local[EKIN] += 0.5 * m * (vi[0] * vi[0] + vi[1] * vi[1] + vi[2] * vi[2]);
+    local[ETHERM] += m * eos.energy_of(rho[i], ui);
     hrange[0] = MIN(hrange[0], h[i]);
     hrange[1] = MAX(hrange[1], h[i]);
   }

@@ -505,6 +505,12 @@ void FixSPHAstro::final_integrate()
 
 void FixSPHAstro::end_of_step()
 {
+  // (individual steps: the particles that ended their step begin the next one, also at tend,
+  // so that the state after the run is that of the time line's current point)
+  if (steps_) {
+    wanted_steps(false);
+    steps_->end_of_step(wanted_, pair_);
+  }
   if (tend_ > 0.0 && current_time() >= tend_ * (1.0 - 1e-12)) {
     stopped_at_tend_ = true;
     timer->force_timeout();
@@ -513,13 +519,10 @@ void FixSPHAstro::end_of_step()
                      update->ntimestep);
     return;
   }
-  if (steps_) {
-    wanted_steps(false);
-    steps_->end_of_step(wanted_, pair_);
+  if (steps_)
     next_individual_timestep();
-    return;
-  }
-  next_timestep(true);
+  else
+    next_timestep(true);
 }
 
 void FixSPHAstro::post_run()
@@ -742,6 +745,11 @@ bool FixSPHAstro::own_step(int i, double &dt) const
     return true;
   }
   return steps_->own_step(i, dt);
+}
+
+bool FixSPHAstro::mid_step(int i) const
+{
+  return steps_ && steps_->mid_step(i);
 }
 
 // LAMMPS' next step: to the next end of a particle step

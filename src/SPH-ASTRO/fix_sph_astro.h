@@ -62,6 +62,9 @@ class FixSPHAstro : public Fix {
   // (always with global steps), with its length dt (update->dt with global steps, its own with
   // steps individual); for fixes that integrate per-particle state (fix sph/astro/switch)
   bool own_step(int i, double &dt) const;
+  // with steps individual: owned atom i is inside its step now (v and u are those of the middle
+  // of its step; d2_vest and d_uest hold them at the current time)
+  bool mid_step(int i) const;
 
   // reference total energy of a compute sph/astro/global (by compute ID): set at its first
   // evaluation, kept across restarts

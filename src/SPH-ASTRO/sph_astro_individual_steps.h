@@ -78,6 +78,9 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   void final_kick(bool evolve_u);
   // the active particles' new bins (wanted: their criteria), the limiter, the next step
   void end_of_step(const std::vector<double> &wanted, LAMMPS_NS::PairSPHAstro *pair);
+  // owned atom i is inside its step at the current time (after end_of_step): its v and u are
+  // those of the middle of its step, d2_vest and d_uest those of now
+  bool mid_step(int i) const { return started_ && atom->dvector[idx_.begin][i] != ti_now_; }
   // the LAMMPS timestep to the next end of a particle step
   double next_dt() const { return (ti_next_ - ti_now_) * tick(); }
 
