@@ -217,8 +217,8 @@ TEST(IndividualSteps, OptionsItDoesNotCarryAreRefused)
 {
   {
     auto lmp = open_lammps();
-    gas(lmp, "box", 2, std::string(PAIR) + " conduction 0.1", "sph/astro steps individual");
-    EXPECT_NE(error_of(lmp, "run 0").find("conduction is not available with individual"),
+    gas(lmp, "box", 2, std::string(PAIR) + " density continuity", "sph/astro steps individual");
+    EXPECT_NE(error_of(lmp, "run 0").find("density continuity is not available with individual"),
               std::string::npos);
   }
   {

@@ -704,12 +704,11 @@ void FixSPHAstro::set_timestep(double dt)
 void FixSPHAstro::check_individual_options()
 {
   const PairOptions &o = pair_->options();
-  const char *what = entropy_   ? "fix sph/astro thermal entropy"
-      : o.density_continuity    ? "pair_style sph/astro density continuity"
-      : o.physical_conduction() ? "pair_style sph/astro conduction"
-      : o.reconstruction()      ? "pair_style sph/astro reconstruct"
-      : o.pressure_energy       ? "pair_style sph/astro formulation pressure-energy"
-                                : nullptr;
+  const char *what = entropy_ ? "fix sph/astro thermal entropy"
+      : o.density_continuity  ? "pair_style sph/astro density continuity"
+      : o.reconstruction()    ? "pair_style sph/astro reconstruct"
+      : o.pressure_energy     ? "pair_style sph/astro formulation pressure-energy"
+                              : nullptr;
   if (what)
     error->all(FLERR,
                "fix sph/astro steps individual: {} is not available with individual timesteps "
