@@ -565,3 +565,37 @@ TEST_F(BadInput, TimestepCollapseStopsTheRun)
   commands(lmp, {"unfix gas", "fix gas all sph/astro dtmin 1.0"});
   expect_error("run 10", "fell below dtmin = 1");
 }
+
+// the stability sentinel: a run whose h iteration fails for most particles, or whose timestep
+// collapses by more than the set share, stops with the cause and an atom ID (sentinel stop);
+// a sound run does not
+TEST(FixSPHAstroSentinel, StopsOnFailedHIterationAndOnATimestepCollapse)
+{
+  {
+    auto lmp = open_lammps();
+    gas(lmp, "box", 3, PAIR, "sph/astro courant 0.3 sentinel stop");
+    commands(lmp, {"fix hvar all sph/astro/h iterate", "run 20"});    // sound: no report
+    EXPECT_EQ(lmp->update->ntimestep, 20);
+  }
+  {
+    auto lmp = open_lammps();
+    gas(lmp, "box", 3, PAIR, "sph/astro courant 0.3 sentinel stop");
+    commands(lmp, {"fix hvar all sph/astro/h iterate maxiter 1", "set group all d_h 0.3"});
+    const std::string message = error_of(lmp, "run 20");
+    EXPECT_NE(message.find("did not converge (first: atom"), std::string::npos) << message;
+  }
+  auto lmp = open_lammps();
+  gas(lmp, "box", 3, PAIR, "sph/astro courant 0.3 sentinel stop hshare 1.0");
+  commands(lmp, {"fix hvar all sph/astro/h iterate hfact 0.1", "set group all d_h 0.3"});
+  const std::string message = error_of(lmp, "run 50");
+  EXPECT_NE(message.find("fell below 1e-06 x the run's first timestep"), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("limited by atom"), std::string::npos) << message;
+}
+
+TEST_F(BadInput, SentinelArguments)
+{
+  expect_error("fix gas all sph/astro sentinel loud", "sentinel 'loud' is not one of");
+  expect_error("fix gas all sph/astro collapse 2", "collapse = 2 must be in [0, 1)");
+  expect_error("fix gas all sph/astro hshare -1", "hshare = -1 must be in [0, 1]");
+}

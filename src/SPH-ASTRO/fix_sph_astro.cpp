@@ -97,6 +97,11 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
   last_limiting_atom_ = 0;
   steps_ = nullptr;
   limiter_levels_ = 1;
+  sentinel_ = Sentinel::WARN;
+  collapse_ = 1e-6;
+  hshare_ = 0.05;
+  dt_run_start_ = 0.0;
+  dt_reported_ = h_reported_ = false;
   bool individual = false;
 
   time_integrate = 1;
@@ -174,6 +179,29 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
                      "particle's step at most 2^N times its neighbours'; 1 by default)",
                      val);
       }
+    } else if (key == "sentinel") {
+      if (strcmp(val, "warn") == 0)
+        sentinel_ = Sentinel::WARN;
+      else if (strcmp(val, "stop") == 0)
+        sentinel_ = Sentinel::STOP;
+      else if (strcmp(val, "off") == 0)
+        sentinel_ = Sentinel::OFF;
+      else
+        error->all(FLERR, "fix sph/astro: sentinel '{}' is not one of: warn, stop, off", val);
+    } else if (key == "collapse") {
+      collapse_ = utils::numeric(FLERR, val, false, lmp);
+      if (!(collapse_ >= 0.0) || collapse_ >= 1.0)
+        error->all(FLERR,
+                   "fix sph/astro: collapse = {} must be in [0, 1) (the share of the run's first "
+                   "timestep below which the sentinel reports; 0: never)",
+                   val);
+    } else if (key == "hshare") {
+      hshare_ = utils::numeric(FLERR, val, false, lmp);
+      if (!(hshare_ >= 0.0) || hshare_ > 1.0)
+        error->all(FLERR,
+                   "fix sph/astro: hshare = {} must be in [0, 1] (the share of particles failing "
+                   "the h iteration or held at the h cap above which the sentinel reports)",
+                   val);
     } else if (key == "dt") {
       if (strcmp(val, "adaptive") == 0)
         adaptive_ = true;
@@ -184,7 +212,8 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
     } else
       error->all(FLERR,
                  "fix sph/astro: unknown keyword '{}'; allowed: thermal, courant, force, energy, "
-                 "conduction, conductivity, xsph, dtmax, dtmin, tend, dt, steps, limiter",
+                 "conduction, conductivity, xsph, dtmax, dtmin, tend, dt, steps, limiter, "
+                 "sentinel, collapse, hshare",
                  key);
     iarg += 2;
   }
@@ -332,6 +361,8 @@ void FixSPHAstro::setup(int /*vflag*/)
   entropy_needs_init_ = density_needs_init_ = false;
   stopped_at_tend_ = false;
   user_dt_ = update->dt;
+  dt_reported_ = h_reported_ = false;
+  dt_run_start_ = 0.0;
   if (tend_ > 0.0 && current_time() >= tend_ * (1.0 - 1e-12)) {
     if (comm->me == 0)
       error->warning(FLERR, "fix sph/astro: time {} already at tend {}: the run stops at once",
@@ -523,6 +554,78 @@ void FixSPHAstro::end_of_step()
     next_individual_timestep();
   else
     next_timestep(true);
+  check_sentinel();
+}
+
+/* ----------------------------------------------------------------------
+   the stability sentinel (keywords sentinel, collapse, hshare)
+------------------------------------------------------------------------- */
+
+void FixSPHAstro::sentinel_report(const std::string &message)
+{
+  if (sentinel_ == Sentinel::STOP) error->all(FLERR, message + " (sentinel stop)");
+  if (comm->me == 0) error->warning(FLERR, message);
+}
+
+void FixSPHAstro::check_sentinel()
+{
+  if (sentinel_ == Sentinel::OFF) return;
+  // (the run's first timestep: that of its first step, all setup forces in)
+  if (dt_run_start_ == 0.0) dt_run_start_ = update->dt;
+  if (!dt_reported_ && adaptive_ && collapse_ > 0.0 && update->dt < collapse_ * dt_run_start_) {
+    dt_reported_ = true;
+    std::string why;
+    if (steps_) {    // the particle on the shortest step
+      struct {
+        double bin;
+        int rank;
+      } mine = {-1.0, comm->me}, all;
+      tagint atom_id = 0;
+      int flag, cols;
+      const double *bin = atom->dvector[atom->find_custom("step_bin", flag, cols)];
+      for (int i = 0; i < atom->nlocal; i++)
+        if (bin[i] > mine.bin) {
+          mine.bin = bin[i];
+          atom_id = atom->tag[i];
+        }
+      MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
+      MPI_Bcast(&atom_id, 1, MPI_LMP_TAGINT, all.rank, world);
+      why = fmt::format("atom {} steps dt_max / 2^{:.0f}", atom_id, all.bin);
+    } else
+      why = fmt::format("limited by atom {}: Courant dt {:.6g}, force dt {:.6g}, energy dt "
+                        "{:.6g}, conduction dt {:.6g}",
+                        last_limiting_atom_, last_dt_cv_, last_dt_force_, last_dt_energy_,
+                        last_dt_cond_);
+    sentinel_report(fmt::format(
+        "fix sph/astro: the timestep {:.6g} at step {} fell below {:g} x the run's first "
+        "timestep {:.6g} ({}); a collapse, a blow-up, or a setting (alpha, hfact, initial "
+        "state) that drives the criteria down; keyword collapse sets the share",
+        update->dt, update->ntimestep, collapse_, dt_run_start_, why));
+  }
+  if (!h_reported_ && hfix_ && hfix_->mode() == FixSPHAstroH::Mode::ITERATE) {
+    const GradhStatistics &st = pair_->h_statistics();
+    double counts[3] = {static_cast<double>(st.failures), static_cast<double>(st.capped),
+                        static_cast<double>(st.particles)},
+           all[3];
+    MPI_Allreduce(counts, all, 3, MPI_DOUBLE, MPI_SUM, world);
+    if (all[2] > 0.0 && all[0] + all[1] > hshare_ * all[2]) {
+      h_reported_ = true;
+      const tagint none = MAXTAGINT;
+      tagint first[2] = {st.first_failure ? st.first_failure : none,
+                         st.first_capped ? st.first_capped : none},
+             first_all[2];
+      MPI_Allreduce(first, first_all, 2, MPI_LMP_TAGINT, MPI_MIN, world);
+      auto name = [none](tagint id) {
+        return id == none ? std::string("none") : fmt::format("atom {}", id);
+      };
+      sentinel_report(fmt::format(
+          "fix sph/astro: at step {} the h iteration of {:.0f} of {:.0f} particles did not "
+          "converge (first: {}) and {:.0f} were held at the h cap (first: {}); their h does not "
+          "follow rho, so their forces are not the grad-h forces: raise fix sph/astro/h maxiter, "
+          "margin or hmax, or start from a better h; keyword hshare sets the share",
+          update->ntimestep, all[0], all[2], name(first_all[0]), all[1], name(first_all[1])));
+    }
+  }
 }
 
 void FixSPHAstro::post_run()

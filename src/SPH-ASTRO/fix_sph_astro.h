@@ -129,6 +129,16 @@ class FixSPHAstro : public Fix {
   void check_individual_options();
   void next_individual_timestep();
 
+  // the stability sentinel: warn (or stop) once per run when dt falls below collapse_ x the
+  // run's first timestep, or when more than hshare_ of the particles of the latest h iteration
+  // failed to converge or were held at the h cap
+  enum class Sentinel { OFF, WARN, STOP } sentinel_;
+  double collapse_, hshare_;
+  double dt_run_start_;
+  bool dt_reported_, h_reported_;
+  void check_sentinel();
+  void sentinel_report(const std::string &message);
+
   void next_timestep(bool from_end_of_step = false);
   void set_timestep(double dt);
   double current_time() const;

@@ -188,8 +188,15 @@ namespace {
         }
         hi = hnew;
       }
-      if (!converged) stats.failures++;
-      if (at_cap) stats.capped++;
+      if (!converged) {
+        stats.failures++;
+        if (!stats.first_failure || ctx.tag[i] < stats.first_failure)
+          stats.first_failure = ctx.tag[i];
+      }
+      if (at_cap) {
+        stats.capped++;
+        if (!stats.first_capped || ctx.tag[i] < stats.first_capped) stats.first_capped = ctx.tag[i];
+      }
       hi = h_evaluated;
       stats.iterations_sum += it;
       if (it > stats.iterations_max) stats.iterations_max = it;

@@ -83,6 +83,8 @@ struct GradhSettings {
 struct GradhStatistics {
   double iterations_sum = 0.0;
   int iterations_max = 0, particles = 0, failures = 0, capped = 0;
+  // the first atom (by ID) that did not converge, and the first held at the cap (0: none)
+  LAMMPS_NS::tagint first_failure = 0, first_capped = 0;
 };
 void density_gradh(const PassContext &ctx, const GradhSettings &s, GradhStatistics &stats);
 
