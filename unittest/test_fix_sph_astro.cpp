@@ -566,9 +566,9 @@ TEST_F(BadInput, TimestepCollapseStopsTheRun)
   expect_error("run 10", "fell below dtmin = 1");
 }
 
-// the stability sentinel: a run whose h iteration fails for most particles, or whose timestep
-// collapses by more than the set share, stops with the cause and an atom ID (sentinel stop);
-// a sound run does not
+// the stability sentinel: a run whose h iteration fails for most particles, whose particles
+// have no neighbour, or whose timestep collapses by more than the set share, stops with the
+// cause and an atom ID (sentinel stop); a sound run does not
 TEST(FixSPHAstroSentinel, StopsOnFailedHIterationAndOnATimestepCollapse)
 {
   {
@@ -583,6 +583,15 @@ TEST(FixSPHAstroSentinel, StopsOnFailedHIterationAndOnATimestepCollapse)
     commands(lmp, {"fix hvar all sph/astro/h iterate maxiter 1", "set group all d_h 0.3"});
     const std::string message = error_of(lmp, "run 20");
     EXPECT_NE(message.find("did not converge (first: atom"), std::string::npos) << message;
+  }
+  {    // fixed h far below the spacing: no particle has a neighbour
+    auto lmp = open_lammps();
+    gas(lmp, "box", 3, PAIR, "sph/astro courant 0.3 sentinel stop");
+    commands(lmp, {"set group all d_h 0.05", "neighbor 0.02 bin"});
+    const std::string message = error_of(lmp, "run 20");
+    EXPECT_NE(message.find("108 of 108 particles (first: atom 1) have no neighbour"),
+              std::string::npos)
+        << message;
   }
   auto lmp = open_lammps();
   gas(lmp, "box", 3, PAIR, "sph/astro courant 0.3 sentinel stop hshare 1.0");

@@ -101,7 +101,7 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
   collapse_ = 1e-6;
   hshare_ = 0.05;
   dt_run_start_ = 0.0;
-  dt_reported_ = h_reported_ = false;
+  dt_reported_ = h_reported_ = isolated_reported_ = false;
   bool individual = false;
 
   time_integrate = 1;
@@ -361,7 +361,7 @@ void FixSPHAstro::setup(int /*vflag*/)
   entropy_needs_init_ = density_needs_init_ = false;
   stopped_at_tend_ = false;
   user_dt_ = update->dt;
-  dt_reported_ = h_reported_ = false;
+  dt_reported_ = h_reported_ = isolated_reported_ = false;
   dt_run_start_ = 0.0;
   if (tend_ > 0.0 && current_time() >= tend_ * (1.0 - 1e-12)) {
     if (comm->me == 0)
@@ -624,6 +624,32 @@ void FixSPHAstro::check_sentinel()
           "follow rho, so their forces are not the grad-h forces: raise fix sph/astro/h maxiter, "
           "margin or hmax, or start from a better h; keyword hshare sets the share",
           update->ntimestep, all[0], all[2], name(first_all[0]), all[1], name(first_all[1])));
+    }
+  }
+  // particles alone in their kernel support feel no pressure (the counts of the latest
+  // density pass; density continuity has none without a pass of its own)
+  if (!isolated_reported_ && !pair_->options().density_continuity) {
+    const double *nneigh = pair_->neighbour_counts();
+    const int *mask = atom->mask;
+    double counts[2] = {0.0, 0.0}, all[2];
+    tagint first = MAXTAGINT, first_all;
+    for (int i = 0; i < atom->nlocal; i++) {
+      if (!(mask[i] & groupbit)) continue;
+      counts[1] += 1.0;
+      if (nneigh[i] > 0.0) continue;
+      counts[0] += 1.0;
+      first = MIN(first, atom->tag[i]);
+    }
+    MPI_Allreduce(counts, all, 2, MPI_DOUBLE, MPI_SUM, world);
+    if (all[1] > 0.0 && all[0] > hshare_ * all[1]) {
+      isolated_reported_ = true;
+      MPI_Allreduce(&first, &first_all, 1, MPI_LMP_TAGINT, MPI_MIN, world);
+      sentinel_report(fmt::format(
+          "fix sph/astro: at step {} {:.0f} of {:.0f} particles (first: atom {}) have no "
+          "neighbour inside their kernel support: they feel no pressure and do not move with the "
+          "gas; h is too small for the particle spacing (raise d_h or use fix sph/astro/h); "
+          "keyword hshare sets the share",
+          update->ntimestep, all[0], all[1], first_all));
     }
   }
 }

@@ -130,12 +130,13 @@ class FixSPHAstro : public Fix {
   void next_individual_timestep();
 
   // the stability sentinel: warn (or stop) once per run when dt falls below collapse_ x the
-  // run's first timestep, or when more than hshare_ of the particles of the latest h iteration
-  // failed to converge or were held at the h cap
+  // run's first timestep, when more than hshare_ of the particles of the latest h iteration
+  // failed to converge or were held at the h cap, or when more than hshare_ of the particles
+  // have no neighbour inside their kernel support
   enum class Sentinel { OFF, WARN, STOP } sentinel_;
   double collapse_, hshare_;
   double dt_run_start_;
-  bool dt_reported_, h_reported_;
+  bool dt_reported_, h_reported_, isolated_reported_;
   void check_sentinel();
   void sentinel_report(const std::string &message);
 
