@@ -608,3 +608,21 @@ TEST_F(BadInput, SentinelArguments)
   expect_error("fix gas all sph/astro collapse 2", "collapse = 2 must be in [0, 1)");
   expect_error("fix gas all sph/astro hshare -1", "hshare = -1 must be in [0, 1]");
 }
+
+// velocities that are not finite are reported with the atom at the run's start; a huge finite
+// one that collapses the timestep names the limiting atom; a second integrator on the same
+// particles, a timestep setter and an empty group are reported
+TEST_F(BadInput, VelocitiesAndOtherIntegrators)
+{
+  commands(lmp,
+           {"pair_style " + std::string(PAIR), "pair_coeff * *", "fix gas all sph/astro",
+            "set group all d_h 0.9", "set group all d_u 1.0", "velocity all set 0 0 0"});
+  lmp->atom->v[lmp->atom->map(5)][0] = NAN;    // (set takes no NaN)
+  expect_error("run 1", "atom 5 has velocity (nan, 0, 0) at the start of the run");
+  commands(lmp, {"set atom 5 vx 1e300", "set atom 5 vy 1e300"});
+  expect_error("run 1", "is not positive and finite (limited by atom ");
+  commands(lmp, {"set atom 5 vx 0.0 vy 0.0", "fix reset all dt/reset 1 NULL 0.1 0.1"});
+  expect_error("run 0", "fix reset (dt/reset) also sets the timestep");
+  commands(lmp, {"unfix reset", "fix twice all nve"});
+  EXPECT_EQ(error_of(lmp, "run 0"), "");    // a warning, not an error
+}

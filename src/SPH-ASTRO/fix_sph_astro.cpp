@@ -323,6 +323,24 @@ void FixSPHAstro::init()
     error->all(FLERR,
                "fix sph/astro: only one instance is allowed (it sets the global timestep); use "
                "one fix for all SPH particles");
+  // other integrators or timestep setters on the same particles
+  for (auto &other : modify->get_fix_list()) {
+    if (other == this) continue;
+    if (adaptive_ && utils::strmatch(other->style, "^dt/reset"))
+      error->all(FLERR,
+                 "fix sph/astro: fix {} ({}) also sets the timestep; fix sph/astro sets it from "
+                 "the SPH criteria (use its keywords dtmax, dtmin, or dt fixed)",
+                 other->id, other->style);
+    if (other->time_integrate && (group->bitmask[other->igroup] & groupbit) &&
+        group->count(igroup) > 0 && comm->me == 0)
+      error->warning(FLERR,
+                     "fix sph/astro: fix {} ({}) also integrates particles of group {}: they "
+                     "are moved twice per step",
+                     other->id, other->style, group->names[igroup]);
+  }
+  if (group->count(igroup) == 0 && comm->me == 0)
+    error->warning(FLERR, "fix sph/astro: group {} holds no particles: nothing is integrated",
+                   group->names[igroup]);
 
   // predictions are kept only when they belong to this step and v and u (and rho) are as the
   // last run left them (a continued or restarted run); after `velocity` or `set` they start
@@ -363,6 +381,7 @@ void FixSPHAstro::setup(int /*vflag*/)
   user_dt_ = update->dt;
   dt_reported_ = h_reported_ = isolated_reported_ = false;
   dt_run_start_ = 0.0;
+  check_velocities("at the start of the run");
   if (tend_ > 0.0 && current_time() >= tend_ * (1.0 - 1e-12)) {
     if (comm->me == 0)
       error->warning(FLERR, "fix sph/astro: time {} already at tend {}: the run stops at once",
@@ -534,8 +553,23 @@ void FixSPHAstro::final_integrate()
   }
 }
 
+// every owned particle's velocity must be finite: name the first that is not
+void FixSPHAstro::check_velocities(const char *when)
+{
+  double **v = atom->v;
+  const int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++)
+    if ((mask[i] & groupbit) &&
+        !(std::isfinite(v[i][0]) && std::isfinite(v[i][1]) && std::isfinite(v[i][2])))
+      error->one(FLERR,
+                 "fix sph/astro: atom {} has velocity ({}, {}, {}) {} (step {}); velocities must "
+                 "be finite",
+                 atom->tag[i], v[i][0], v[i][1], v[i][2], when, update->ntimestep);
+}
+
 void FixSPHAstro::end_of_step()
 {
+  check_velocities("after the step");
   // (individual steps: the particles that ended their step begin the next one, also at tend,
   // so that the state after the run is that of the time line's current point)
   if (steps_) {
@@ -807,9 +841,17 @@ void FixSPHAstro::next_timestep(bool from_end_of_step)
       if (from_end_of_step) schedule_output(update->ntimestep + 1);
     }
   }
-  if (!(dt > 0.0) || !std::isfinite(dt))
+  if (!(dt > 0.0) || !std::isfinite(dt)) {
+    if (adaptive_)
+      error->all(FLERR,
+                 "fix sph/astro: timestep {} at step {} is not positive and finite (limited by "
+                 "atom {}: Courant dt {}, force dt {}, energy dt {}, conduction dt {}); check "
+                 "that atom's velocity, force and state",
+                 dt, update->ntimestep, last_limiting_atom_, last_dt_cv_, last_dt_force_,
+                 last_dt_energy_, last_dt_cond_);
     error->all(FLERR, "fix sph/astro: timestep {} at step {} is not positive and finite", dt,
                update->ntimestep);
+  }
   set_timestep(dt);
 }
 

@@ -138,6 +138,7 @@ class FixSPHAstro : public Fix {
   double dt_run_start_;
   bool dt_reported_, h_reported_, isolated_reported_;
   void check_sentinel();
+  void check_velocities(const char *when);
   void sentinel_report(const std::string &message);
 
   void next_timestep(bool from_end_of_step = false);
