@@ -626,3 +626,21 @@ TEST_F(BadInput, VelocitiesAndOtherIntegrators)
   commands(lmp, {"unfix reset", "fix twice all nve"});
   EXPECT_EQ(error_of(lmp, "run 0"), "");    // a warning, not an error
 }
+
+// a particle created between runs starts with an empty SPH state, not with the h and u a ghost
+// left in its memory slot: the next run names it and asks for its h
+TEST(FixSPHAstro, ParticleCreatedBetweenRunsStartsEmpty)
+{
+  auto lmp = open_lammps();
+  gas(lmp, "box", 3, PAIR, "sph/astro courant 0.3");
+  commands(lmp, {"run 5", "create_atoms 1 single 1.3 1.3 1.3 units box"});
+  const int i = lmp->atom->map(static_cast<int>(lmp->atom->natoms));
+  ASSERT_GE(i, 0);
+  EXPECT_EQ(per_atom(lmp, "h").at(static_cast<int>(lmp->atom->natoms)), 0.0);
+  EXPECT_EQ(per_atom(lmp, "u").at(static_cast<int>(lmp->atom->natoms)), 0.0);
+  const std::string message = error_of(lmp, "run 5");
+  EXPECT_NE(message.find("atom " + std::to_string(lmp->atom->natoms) +
+                         " has smoothing length h = 0"),
+            std::string::npos)
+      << message;
+}

@@ -106,8 +106,9 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
 
   time_integrate = 1;
   restart_global = 1;
-  scalar_flag = 1;    // current dt
-  vector_flag = 1;    // [dt_courant, dt_force, dt_energy, dt_conduction]
+  create_attribute = 1;    // set_arrays() for created particles
+  scalar_flag = 1;         // current dt
+  vector_flag = 1;         // [dt_courant, dt_force, dt_energy, dt_conduction]
   size_vector = 4;
   global_freq = 1;
   extscalar = 0;
@@ -938,6 +939,24 @@ void FixSPHAstro::next_individual_timestep()
   if (tend_ > 0.0 && current_time() + dt >= tend_ * (1.0 - 1e-12))
     schedule_output(update->ntimestep + 1);
   set_timestep(dt);
+}
+
+void FixSPHAstro::set_arrays(int i)
+{
+  // the custom properties of the package's state (fix property/atom clears only memory it
+  // grows, not a slot a ghost or a deleted atom left)
+  int flag, cols;
+  for (const char *name : {"rho", "h", "u", "dudt", "uest", "entropy", "entropy_est", "dentropy",
+                           "rhoest", "drhodt", "step_begin", "step_end", "step_bin", "step_dudt",
+                           "step_divv", "step_omega", "step_balsara", "step_nneigh"}) {
+    const int index = atom->find_custom(name, flag, cols);
+    if (index >= 0 && flag == 1 && cols == 0) atom->dvector[index][i] = 0.0;
+  }
+  for (const char *name : {"vest", "step_accel"}) {
+    const int index = atom->find_custom(name, flag, cols);
+    if (index >= 0 && flag == 1 && cols > 0)
+      for (int c = 0; c < cols; c++) atom->darray[index][i][c] = 0.0;
+  }
 }
 
 int FixSPHAstro::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, int * /*pbc*/)

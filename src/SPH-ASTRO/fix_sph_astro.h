@@ -50,6 +50,9 @@ class FixSPHAstro : public Fix {
   double compute_vector(int) override;
   void write_restart(FILE *) override;
   void restart(char *) override;
+  // a particle created during the simulation (create_atoms, fix deposit, ...) starts with an
+  // empty SPH state (h = 0 is reported by pair sph/astro), not with values left in its slot
+  void set_arrays(int) override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
   int pack_reverse_comm(int, int, double *) override;
