@@ -14,7 +14,7 @@ differences from the global one.
 Usage (from anywhere; needs numpy, i.e. Debian's /usr/bin/python3, and lmp on the PATH)::
 
     /usr/bin/python3 examples/sedov/compare_steps.py [--n 16] [--np 1] [--outdir DIR]
-        [--assert 'l1=0.02,rshock=0.02,nolimiter=0.1,updates=0.35']
+        [--assert 'l1=0.02,rshock=0.02,nolimiter=0.1,updates=0.30']
 
 ``--assert`` fails (exit 1) unless: the limited individual run's L1(rho) and shock radius
 differ from the global run's by at most ``l1`` and ``rshock`` (relative: |a-b|/|b|), the run

@@ -42,8 +42,8 @@
 #include "sph_astro_individual_steps.h"
 #include "sph_astro_options.h"
 #include "sph_astro_passes.h"
+#include "sph_astro_sentinel.h"
 #include "sph_astro_state.h"
-#include "sph_astro_time_bins.h"
 #include "sph_astro_timestep.h"
 #include "timer.h"
 #include "update.h"
@@ -63,7 +63,7 @@ static constexpr double STEP_BLOCK = 1 << 20;
 
 FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), state_(new StateIndex()), entropy_index_(new EntropyIndex()),
-    continuity_index_(new ContinuityIndex())
+    continuity_index_(new ContinuityIndex()), sentinel_(new StabilitySentinel(lmp))
 {
   courant_ = 0.3;
   force_factor_ = 0.3;
@@ -97,11 +97,6 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
   last_limiting_atom_ = 0;
   steps_ = nullptr;
   limiter_levels_ = 1;
-  sentinel_ = Sentinel::WARN;
-  collapse_ = 1e-6;
-  hshare_ = 0.05;
-  dt_run_start_ = 0.0;
-  dt_reported_ = h_reported_ = isolated_reported_ = false;
   bool individual = false;
 
   time_integrate = 1;
@@ -180,29 +175,8 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
                      "particle's step at most 2^N times its neighbours'; 1 by default)",
                      val);
       }
-    } else if (key == "sentinel") {
-      if (strcmp(val, "warn") == 0)
-        sentinel_ = Sentinel::WARN;
-      else if (strcmp(val, "stop") == 0)
-        sentinel_ = Sentinel::STOP;
-      else if (strcmp(val, "off") == 0)
-        sentinel_ = Sentinel::OFF;
-      else
-        error->all(FLERR, "fix sph/astro: sentinel '{}' is not one of: warn, stop, off", val);
-    } else if (key == "collapse") {
-      collapse_ = utils::numeric(FLERR, val, false, lmp);
-      if (!(collapse_ >= 0.0) || collapse_ >= 1.0)
-        error->all(FLERR,
-                   "fix sph/astro: collapse = {} must be in [0, 1) (the share of the run's first "
-                   "timestep below which the sentinel reports; 0: never)",
-                   val);
-    } else if (key == "hshare") {
-      hshare_ = utils::numeric(FLERR, val, false, lmp);
-      if (!(hshare_ >= 0.0) || hshare_ > 1.0)
-        error->all(FLERR,
-                   "fix sph/astro: hshare = {} must be in [0, 1] (the share of particles failing "
-                   "the h iteration or held at the h cap above which the sentinel reports)",
-                   val);
+    } else if (sentinel_->parse(key, val)) {
+      // sentinel, collapse, hshare (sph_astro_sentinel.h)
     } else if (key == "dt") {
       if (strcmp(val, "adaptive") == 0)
         adaptive_ = true;
@@ -250,6 +224,7 @@ FixSPHAstro::~FixSPHAstro()
 {
   memory->destroy(xsph_);
   delete steps_;
+  delete sentinel_;
   delete state_;
   delete entropy_index_;
   delete continuity_index_;
@@ -351,7 +326,7 @@ void FixSPHAstro::init()
   pair_->schedule_initialisation(entropy_ && entropy_needs_init_,
                                  continuity_ && density_needs_init_);
   if (steps_) {
-    check_individual_options();
+    steps_->check_options(pair_->options(), entropy_, igroup);
     steps_->init(*state_, unchanged);
   }
   if (predicted_step_ != update->ntimestep || !unchanged) {
@@ -380,9 +355,8 @@ void FixSPHAstro::setup(int /*vflag*/)
   entropy_needs_init_ = density_needs_init_ = false;
   stopped_at_tend_ = false;
   user_dt_ = update->dt;
-  dt_reported_ = h_reported_ = isolated_reported_ = false;
-  dt_run_start_ = 0.0;
-  check_velocities("at the start of the run");
+  sentinel_->start_run();
+  sentinel_->check_velocities(groupbit, "at the start of the run");
   if (tend_ > 0.0 && current_time() >= tend_ * (1.0 - 1e-12)) {
     if (comm->me == 0)
       error->warning(FLERR, "fix sph/astro: time {} already at tend {}: the run stops at once",
@@ -554,23 +528,9 @@ void FixSPHAstro::final_integrate()
   }
 }
 
-// every owned particle's velocity must be finite: name the first that is not
-void FixSPHAstro::check_velocities(const char *when)
-{
-  double **v = atom->v;
-  const int *mask = atom->mask;
-  for (int i = 0; i < atom->nlocal; i++)
-    if ((mask[i] & groupbit) &&
-        !(std::isfinite(v[i][0]) && std::isfinite(v[i][1]) && std::isfinite(v[i][2])))
-      error->one(FLERR,
-                 "fix sph/astro: atom {} has velocity ({}, {}, {}) {} (step {}); velocities must "
-                 "be finite",
-                 atom->tag[i], v[i][0], v[i][1], v[i][2], when, update->ntimestep);
-}
-
 void FixSPHAstro::end_of_step()
 {
-  check_velocities("after the step");
+  sentinel_->check_velocities(groupbit, "after the step");
   // (individual steps: the particles that ended their step begin the next one, also at tend,
   // so that the state after the run is that of the time line's current point)
   if (steps_) {
@@ -589,126 +549,19 @@ void FixSPHAstro::end_of_step()
     next_individual_timestep();
   else
     next_timestep(true);
-  check_sentinel();
-}
-
-/* ----------------------------------------------------------------------
-   the stability sentinel (keywords sentinel, collapse, hshare)
-------------------------------------------------------------------------- */
-
-void FixSPHAstro::sentinel_report(const std::string &message)
-{
-  if (sentinel_ == Sentinel::STOP) error->all(FLERR, message + " (sentinel stop)");
-  if (comm->me == 0) error->warning(FLERR, message);
-}
-
-void FixSPHAstro::check_sentinel()
-{
-  if (sentinel_ == Sentinel::OFF) return;
-  // (the run's first timestep: that of its first step, all setup forces in)
-  if (dt_run_start_ == 0.0) dt_run_start_ = update->dt;
-  if (!dt_reported_ && adaptive_ && collapse_ > 0.0 && update->dt < collapse_ * dt_run_start_) {
-    dt_reported_ = true;
-    std::string why;
-    if (steps_) {    // the particle on the shortest step
-      struct {
-        double bin;
-        int rank;
-      } mine = {-1.0, comm->me}, all;
-      tagint atom_id = 0;
-      int flag, cols;
-      const double *bin = atom->dvector[atom->find_custom("step_bin", flag, cols)];
-      for (int i = 0; i < atom->nlocal; i++)
-        if (bin[i] > mine.bin) {
-          mine.bin = bin[i];
-          atom_id = atom->tag[i];
-        }
-      MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
-      MPI_Bcast(&atom_id, 1, MPI_LMP_TAGINT, all.rank, world);
-      why = fmt::format("atom {} steps dt_max / 2^{:.0f}", atom_id, all.bin);
-    } else
-      why = fmt::format("limited by atom {}: Courant dt {:.6g}, force dt {:.6g}, energy dt "
-                        "{:.6g}, conduction dt {:.6g}",
-                        last_limiting_atom_, last_dt_cv_, last_dt_force_, last_dt_energy_,
-                        last_dt_cond_);
-    sentinel_report(fmt::format(
-        "fix sph/astro: the timestep {:.6g} at step {} fell below {:g} x the run's first "
-        "timestep {:.6g} ({}); a collapse, a blow-up, or a setting (alpha, hfact, initial "
-        "state) that drives the criteria down; keyword collapse sets the share",
-        update->dt, update->ntimestep, collapse_, dt_run_start_, why));
-  }
-  if (!h_reported_ && hfix_ && hfix_->mode() == FixSPHAstroH::Mode::ITERATE) {
-    const GradhStatistics &st = pair_->h_statistics();
-    double counts[3] = {static_cast<double>(st.failures), static_cast<double>(st.capped),
-                        static_cast<double>(st.particles)},
-           all[3];
-    MPI_Allreduce(counts, all, 3, MPI_DOUBLE, MPI_SUM, world);
-    if (all[2] > 0.0 && all[0] + all[1] > hshare_ * all[2]) {
-      h_reported_ = true;
-      const tagint none = MAXTAGINT;
-      tagint first[2] = {st.first_failure ? st.first_failure : none,
-                         st.first_capped ? st.first_capped : none},
-             first_all[2];
-      MPI_Allreduce(first, first_all, 2, MPI_LMP_TAGINT, MPI_MIN, world);
-      auto name = [none](tagint id) {
-        return id == none ? std::string("none") : fmt::format("atom {}", id);
-      };
-      sentinel_report(fmt::format(
-          "fix sph/astro: at step {} the h iteration of {:.0f} of {:.0f} particles did not "
-          "converge (first: {}) and {:.0f} were held at the h cap (first: {}); their h does not "
-          "follow rho, so their forces are not the grad-h forces: raise fix sph/astro/h maxiter, "
-          "margin or hmax, or start from a better h; keyword hshare sets the share",
-          update->ntimestep, all[0], all[2], name(first_all[0]), all[1], name(first_all[1])));
-    }
-  }
-  // particles alone in their kernel support feel no pressure (the counts of the latest
-  // density pass; density continuity has none without a pass of its own)
-  if (!isolated_reported_ && !pair_->options().density_continuity) {
-    const double *nneigh = pair_->neighbour_counts();
-    const int *mask = atom->mask;
-    double counts[2] = {0.0, 0.0}, all[2];
-    tagint first = MAXTAGINT, first_all;
-    for (int i = 0; i < atom->nlocal; i++) {
-      if (!(mask[i] & groupbit)) continue;
-      counts[1] += 1.0;
-      if (nneigh[i] > 0.0) continue;
-      counts[0] += 1.0;
-      first = MIN(first, atom->tag[i]);
-    }
-    MPI_Allreduce(counts, all, 2, MPI_DOUBLE, MPI_SUM, world);
-    if (all[1] > 0.0 && all[0] > hshare_ * all[1]) {
-      isolated_reported_ = true;
-      MPI_Allreduce(&first, &first_all, 1, MPI_LMP_TAGINT, MPI_MIN, world);
-      sentinel_report(fmt::format(
-          "fix sph/astro: at step {} {:.0f} of {:.0f} particles (first: atom {}) have no "
-          "neighbour inside their kernel support: they feel no pressure and do not move with the "
-          "gas; h is too small for the particle spacing (raise d_h or use fix sph/astro/h); "
-          "keyword hshare sets the share",
-          update->ntimestep, all[0], all[1], first_all));
-    }
-  }
+  const bool iterate = hfix_ && hfix_->mode() == FixSPHAstroH::Mode::ITERATE;
+  sentinel_->check(pair_, groupbit, adaptive_, iterate, [this]() {
+    if (steps_) return steps_->shortest_step();
+    return fmt::format("limited by atom {}: Courant dt {:.6g}, force dt {:.6g}, energy dt {:.6g}, "
+                       "conduction dt {:.6g}",
+                       last_limiting_atom_, last_dt_cv_, last_dt_force_, last_dt_energy_,
+                       last_dt_cond_);
+  });
 }
 
 void FixSPHAstro::post_run()
 {
-  if (steps_ && steps_->started()) {    // the hierarchy's figures and its bins
-    std::vector<double> histogram;
-    const int occupied = steps_->occupied_bins(&histogram);
-    double woken = steps_->woken(), all_woken;
-    MPI_Allreduce(&woken, &all_woken, 1, MPI_DOUBLE, MPI_SUM, world);
-    if (comm->me == 0) {
-      const double n = static_cast<double>(atom->natoms);
-      std::string bins;
-      for (int b = 0; b <= TimeBins::MAX_BIN; b++)
-        if (histogram[b] > 0.0) bins += fmt::format(" {}:{:.0f}", b, histogram[b]);
-      utils::logmesg(lmp,
-                     "fix sph/astro steps individual: {:.0f} particle-updates in {:.0f} steps "
-                     "({:.1f} per particle), {:.0f} woken by the limiter; dt_max {:.6g}, {} "
-                     "occupied bins (bin:particles, dt = dt_max/2^bin):{}\n",
-                     steps_->updates(), steps_->steps(), n > 0 ? steps_->updates() / n : 0.0,
-                     all_woken, steps_->dt_max(), occupied, bins);
-    }
-  }
+  if (steps_) steps_->log_summary();    // the hierarchy's figures and its bins
   // a stop at tend ends this run only; later runs get the user's timeout back
   if (stopped_at_tend_) timer->reset_timeout();
   // a fixed step shortened to land on tend is the user's step again
@@ -872,27 +725,6 @@ void FixSPHAstro::set_timestep(double dt)
    individual timesteps (steps individual): sph_astro_individual_steps.h
 ------------------------------------------------------------------------- */
 
-// what the hierarchy does not carry between a particle's evaluations
-void FixSPHAstro::check_individual_options()
-{
-  const PairOptions &o = pair_->options();
-  const char *what = entropy_ ? "fix sph/astro thermal entropy"
-      : o.density_continuity  ? "pair_style sph/astro density continuity"
-      : o.reconstruction()    ? "pair_style sph/astro reconstruct"
-      : o.pressure_energy     ? "pair_style sph/astro formulation pressure-energy"
-                              : nullptr;
-  if (what)
-    error->all(FLERR,
-               "fix sph/astro steps individual: {} is not available with individual timesteps "
-               "(use steps global)",
-               what);
-  if (group->count(igroup) != atom->natoms)
-    error->all(FLERR,
-               "fix sph/astro steps individual: group {} must hold all particles (each pair "
-               "is evaluated when one of its particles is active)",
-               group->names[igroup]);
-}
-
 // each active particle's step (all: every particle's) from its criteria, at most dtmax
 void FixSPHAstro::wanted_steps(bool all)
 {
@@ -943,20 +775,7 @@ void FixSPHAstro::next_individual_timestep()
 
 void FixSPHAstro::set_arrays(int i)
 {
-  // the custom properties of the package's state (fix property/atom clears only memory it
-  // grows, not a slot a ghost or a deleted atom left)
-  int flag, cols;
-  for (const char *name : {"rho", "h", "u", "dudt", "uest", "entropy", "entropy_est", "dentropy",
-                           "rhoest", "drhodt", "step_begin", "step_end", "step_bin", "step_dudt",
-                           "step_divv", "step_omega", "step_balsara", "step_nneigh"}) {
-    const int index = atom->find_custom(name, flag, cols);
-    if (index >= 0 && flag == 1 && cols == 0) atom->dvector[index][i] = 0.0;
-  }
-  for (const char *name : {"vest", "step_accel"}) {
-    const int index = atom->find_custom(name, flag, cols);
-    if (index >= 0 && flag == 1 && cols > 0)
-      for (int c = 0; c < cols; c++) atom->darray[index][i][c] = 0.0;
-  }
+  clear_state(lmp, i);
 }
 
 int FixSPHAstro::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, int * /*pbc*/)
@@ -990,9 +809,7 @@ double FixSPHAstro::compute_vector(int n)
     if (n == 4) return steps_->active_count();
     if (n == 5) return steps_->occupied_bins();
     if (n == 6) return steps_->updates();
-    double woken = steps_->woken(), all;
-    MPI_Allreduce(&woken, &all, 1, MPI_DOUBLE, MPI_SUM, world);
-    return all;
+    return steps_->woken_total();
   }
   const double values[4] = {last_dt_cv_, last_dt_force_, last_dt_energy_, last_dt_cond_};
   return values[n];

@@ -26,6 +26,7 @@ struct StateIndex;
 struct EntropyIndex;
 struct ContinuityIndex;
 class IndividualSteps;
+class StabilitySentinel;
 }    // namespace SPHAstro
 
 namespace LAMMPS_NS {
@@ -129,20 +130,9 @@ class FixSPHAstro : public Fix {
   void criteria(int i, double dts[4]) const;
   // each active particle's (all: every particle's) step from its criteria and dtmax
   void wanted_steps(bool all);
-  void check_individual_options();
   void next_individual_timestep();
 
-  // the stability sentinel: warn (or stop) once per run when dt falls below collapse_ x the
-  // run's first timestep, when more than hshare_ of the particles of the latest h iteration
-  // failed to converge or were held at the h cap, or when more than hshare_ of the particles
-  // have no neighbour inside their kernel support
-  enum class Sentinel { OFF, WARN, STOP } sentinel_;
-  double collapse_, hshare_;
-  double dt_run_start_;
-  bool dt_reported_, h_reported_, isolated_reported_;
-  void check_sentinel();
-  void check_velocities(const char *when);
-  void sentinel_report(const std::string &message);
+  SPHAstro::StabilitySentinel *sentinel_;    // sph_astro_sentinel.h
 
   void next_timestep(bool from_end_of_step = false);
   void set_timestep(double dt);

@@ -9,6 +9,7 @@
 
 #include "pair_sph_astro.h"
 #include "sph_astro_neigh_view.h"
+#include "sph_astro_options.h"
 #include "sph_astro_time_bins.h"
 
 #include "atom.h"
@@ -16,7 +17,9 @@
 #include "domain.h"
 #include "error.h"
 #include "fix.h"
+#include "group.h"
 #include "update.h"
+#include "utils.h"
 
 #include <algorithm>
 #include <cmath>
@@ -48,6 +51,25 @@ void IndividualSteps::grow()
     bins_.resize(n);
     required_.resize(n);
   }
+}
+
+void IndividualSteps::check_options(const PairOptions &o, bool entropy, int igroup)
+{
+  const char *what = entropy ? "fix sph/astro thermal entropy"
+      : o.density_continuity ? "pair_style sph/astro density continuity"
+      : o.reconstruction()   ? "pair_style sph/astro reconstruct"
+      : o.pressure_energy    ? "pair_style sph/astro formulation pressure-energy"
+                             : nullptr;
+  if (what)
+    error->all(FLERR,
+               "fix sph/astro steps individual: {} is not available with individual timesteps "
+               "(use steps global)",
+               what);
+  if (group->count(igroup) != atom->natoms)
+    error->all(FLERR,
+               "fix sph/astro steps individual: group {} must hold all particles (each pair "
+               "is evaluated when one of its particles is active)",
+               group->names[igroup]);
 }
 
 void IndividualSteps::init(const StateIndex &state, bool state_unchanged)
@@ -353,6 +375,49 @@ int IndividualSteps::occupied_bins(std::vector<double> *histogram) const
   int occupied = 0;
   for (double n : all) occupied += n > 0.0;
   return occupied;
+}
+
+double IndividualSteps::woken_total() const
+{
+  double all;
+  MPI_Allreduce(&woken_, &all, 1, MPI_DOUBLE, MPI_SUM, world);
+  return all;
+}
+
+void IndividualSteps::log_summary() const
+{
+  if (!started_) return;
+  std::vector<double> histogram;
+  const int occupied = occupied_bins(&histogram);
+  const double woken = woken_total();
+  if (comm->me != 0) return;
+  const double n = static_cast<double>(atom->natoms);
+  std::string bins;
+  for (int b = 0; b <= TimeBins::MAX_BIN; b++)
+    if (histogram[b] > 0.0) bins += fmt::format(" {}:{:.0f}", b, histogram[b]);
+  utils::logmesg(lmp,
+                 "fix sph/astro steps individual: {:.0f} particle-updates in {:.0f} steps ({:.1f} "
+                 "per particle), {:.0f} woken by the limiter; dt_max {:.6g}, {} occupied bins "
+                 "(bin:particles, dt = dt_max/2^bin):{}\n",
+                 updates_, steps_, n > 0 ? updates_ / n : 0.0, woken, dt_max_, occupied, bins);
+}
+
+std::string IndividualSteps::shortest_step() const
+{
+  struct {
+    double bin;
+    int rank;
+  } mine = {-1.0, comm->me}, all;
+  tagint atom_id = 0;
+  const double *bin = atom->dvector[idx_.bin];
+  for (int i = 0; i < atom->nlocal; i++)
+    if (bin[i] > mine.bin) {
+      mine.bin = bin[i];
+      atom_id = atom->tag[i];
+    }
+  MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
+  MPI_Bcast(&atom_id, 1, MPI_LMP_TAGINT, all.rank, world);
+  return fmt::format("atom {} steps dt_max / 2^{:.0f}", atom_id, all.bin);
 }
 
 int IndividualSteps::pack_forward_comm(int n, int *list, double *buf)

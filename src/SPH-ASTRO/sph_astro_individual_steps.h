@@ -33,6 +33,7 @@
 #include "pointers.h"
 #include "sph_astro_state.h"
 
+#include <string>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -42,11 +43,16 @@ class PairSPHAstro;
 
 namespace SPHAstro {
 
+struct PairOptions;
+
 class IndividualSteps : protected LAMMPS_NS::Pointers {
  public:
   // owner: the fix whose communication and group this uses; levels: the limiter (0: off)
   IndividualSteps(LAMMPS_NS::LAMMPS *lmp, LAMMPS_NS::Fix *owner, int levels);
 
+  // what the hierarchy does not carry between a particle's evaluations is an error; the fix's
+  // group (igroup) must hold all particles
+  void check_options(const PairOptions &o, bool entropy, int igroup);
   // a run: continue the hierarchy where the last run (or the restart file) left it, or start
   // it anew (first run, or v, u or the particles changed in between)
   void init(const StateIndex &state, bool state_unchanged);
@@ -89,8 +95,13 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   double active_count() const { return active_total_; }
   double updates() const { return updates_; }
   double steps() const { return steps_; }
-  double woken() const { return woken_; }
+  double woken_total() const;    // (collective)
+  // at the end of a run (a hierarchy started): updates, steps, woken particles, dt_max and
+  // the occupied bins with their particles, one log line (collective)
+  void log_summary() const;
   int occupied_bins(std::vector<double> *histogram = nullptr) const;
+  // the particle on the shortest step, as "atom N steps dt_max / 2^b" (collective)
+  std::string shortest_step() const;
   double dt_max() const { return dt_max_; }
 
   // forward: active flags or bins to the ghosts; reverse: the limiter's bins (max)

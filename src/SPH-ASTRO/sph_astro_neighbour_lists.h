@@ -105,8 +105,6 @@ class NeighbourLists : protected LAMMPS_NS::Pointers {
   const NeighView &due_view() const { return due_view_; }
   // the largest h each row serves (owned and ghost)
   const double *limits() const { return hl_.data(); }
-  double limit(int i) const { return hl_[i]; }
-  bool built() const { return built_; }
 
   // every j with r_ij < R h_row, h_row = min(1.5 h, h_cap) (the rows of an h iteration past
   // its list's limit; WideRows)

@@ -167,4 +167,21 @@ void ensure_step_state(LAMMPS *lmp, const char *caller)
                        "d_step_dudt d_step_divv d_step_omega d_step_balsara d_step_nneigh");
 }
 
+void clear_state(LAMMPS *lmp, int i)
+{
+  Atom *atom = lmp->atom;
+  int flag, cols;
+  for (const char *name : {"rho", "h", "u", "dudt", "uest", "entropy", "entropy_est", "dentropy",
+                           "rhoest", "drhodt", "step_begin", "step_end", "step_bin", "step_dudt",
+                           "step_divv", "step_omega", "step_balsara", "step_nneigh"}) {
+    const int index = atom->find_custom(name, flag, cols);
+    if (index >= 0 && flag == 1 && cols == 0) atom->dvector[index][i] = 0.0;
+  }
+  for (const char *name : {"vest", "step_accel"}) {
+    const int index = atom->find_custom(name, flag, cols);
+    if (index >= 0 && flag == 1 && cols > 0)
+      for (int c = 0; c < cols; c++) atom->darray[index][i][c] = 0.0;
+  }
+}
+
 }    // namespace SPHAstro

@@ -92,6 +92,11 @@ struct StepIndex {
       nneigh = -1;
 };
 void ensure_step_state(LAMMPS_NS::LAMMPS *lmp, const char *caller);
+
+// empty the package's per-particle state of atom i (all of the above that exist): a particle
+// created during a simulation (fix property/atom clears only memory it grows, not a slot a
+// ghost or a deleted atom left)
+void clear_state(LAMMPS_NS::LAMMPS *lmp, int i);
 bool find_step_state(LAMMPS_NS::LAMMPS *lmp, StepIndex &idx);
 
 }    // namespace SPHAstro
