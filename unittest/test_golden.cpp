@@ -17,8 +17,7 @@
 //              the neighbour settings as a user would (pair_style comes from the file); its
 //              setup forces (run 0) must equal those of the writer at the end of step 2, and
 //              after 3 more steps it must reproduce the reference's after_steps (round-off:
-//              the restarted run wraps and re-neighbours at its setup). Not for the systems
-//              with fix sph/astro/switch: a known defect, see RESTART_LEFT_OUT below
+//              the restarted run wraps and re-neighbours at its setup)
 //   DataFile   (a) a data file written before the first run (write_data, with the package's
 //              state sections) read into a new instance with the same pair style and fixes
 //              reproduces the reference after_setup and after_steps;
@@ -840,30 +839,6 @@ TEST_P(GoldenDataFile, RoundTrip)
   std::remove(file.c_str());
 }
 
-// Combinations of system and restart check left out, each for a known defect.
-//
-// The systems with fix sph/astro/switch: the switch advances alpha in final_integrate, after
-// the step's force evaluation, so the setup force evaluation of any run that continues another
-// (after read_restart, but also a second run command in the same instance) uses the alpha
-// already advanced over the last step, where the uninterrupted run's first half kick of the
-// next step uses the forces of the old alpha. A continued run then departs from the straight
-// one by far more than round-off (measured with this code: setup forces 4e-3 of the largest
-// |f| away from the writer's last ones, after_steps 1.6e-4; "run 2" + "run 3" against "run 5"
-// in one instance 1.4e-4), contrary to doc/fix_sph_astro_switch.rst ("the run continues bit
-// for bit"), whose test (test_lammps_styles.cpp, Restart.ContinuesBitForBit) compares with a
-// run split at the same step. The data-file check of these systems does run: its writer
-// starts a new run as well.
-const std::set<std::string> RESTART_LEFT_OUT = {"iterate_signal_cullen_dehnen_conductivity",
-                                                "reconstruct_iterate_morris_monaghan"};
-
-std::vector<std::string> restart_systems()
-{
-  std::vector<std::string> names;
-  for (const auto &name : system_names())
-    if (!RESTART_LEFT_OUT.count(name)) names.push_back(name);
-  return names;
-}
-
 std::string param_name(const ::testing::TestParamInfo<std::string> &info)
 {
   return info.param;
@@ -873,7 +848,6 @@ std::string param_name(const ::testing::TestParamInfo<std::string> &info)
 
 INSTANTIATE_TEST_SUITE_P(SPHAstro, GoldenRun, ::testing::ValuesIn(system_names()), param_name);
 
-INSTANTIATE_TEST_SUITE_P(SPHAstro, GoldenRestart, ::testing::ValuesIn(restart_systems()),
-                         param_name);
+INSTANTIATE_TEST_SUITE_P(SPHAstro, GoldenRestart, ::testing::ValuesIn(system_names()), param_name);
 
 INSTANTIATE_TEST_SUITE_P(SPHAstro, GoldenDataFile, ::testing::ValuesIn(system_names()), param_name);

@@ -14,6 +14,9 @@
 // force evaluation alpha_i is advanced over dt with the exact solution of its ODE at
 // frozen coefficients (switch_morris_monaghan(), switch_cullen_dehnen() in
 // sph_astro_pair_terms.h), which stays between alpha_min and alpha_max for any dt.
+// The pair style reads d_alpha_force, the alpha of the last force evaluation, copied from
+// d_alpha before each step's force evaluation: the setup force evaluation of a continued run
+// (run N + run N, read_restart) then repeats the last step's forces exactly.
 // Cullen-Dehnen: d(div v_i)/dt = (div v_i - div v_i of the previous force evaluation) / dt;
 // the previous value is stored at setup and after every step, so it migrates with the atom
 // and comes back from a restart file.
@@ -43,6 +46,7 @@ using namespace FixConst;
 
 static constexpr const char *ALPHA_FIX_ID = "SPH_ASTRO_ALPHA";
 static constexpr const char *DIVV_PREV_FIX_ID = "SPH_ASTRO_DIVV_PREV";
+static constexpr const char *ALPHA_FORCE_FIX_ID = "SPH_ASTRO_ALPHA_FORCE";
 
 FixSPHAstroSwitch::FixSPHAstroSwitch(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
 {
@@ -55,6 +59,8 @@ FixSPHAstroSwitch::FixSPHAstroSwitch(LAMMPS *lmp, int narg, char **arg) : Fix(lm
   h_index_ = -1;
   pair_ = nullptr;
   integrator_ = nullptr;
+  alpha_force_valid_ = false;
+  create_attribute = 1;    // set_arrays(): created particles start at alpha_max
 
   vector_flag = 1;
   size_vector = 2;
@@ -95,7 +101,7 @@ void *FixSPHAstroSwitch::extract(const char *name, int &dim)
 
 int FixSPHAstroSwitch::setmask()
 {
-  return FINAL_INTEGRATE;
+  return PRE_FORCE | FINAL_INTEGRATE;
 }
 
 double *FixSPHAstroSwitch::divv_prev()
@@ -121,6 +127,17 @@ void FixSPHAstroSwitch::post_constructor()
   } else if (flag != 1 || cols != 0)
     error->all(FLERR, "fix sph/astro/switch: custom property alpha exists but is not d_alpha");
 
+  if (atom->find_custom("alpha_force", flag, cols) < 0) {
+    Fix *store = modify->add_fix(std::string(ALPHA_FORCE_FIX_ID) +
+                                 " all property/atom d_alpha_force ghost yes");
+    // a restart file brings back the alpha of the last force evaluation; a data file starts a
+    // new run (fix_sph_astro_switch.rst), which copies d_alpha at its setup
+    alpha_force_valid_ = store->restart_reset != 0;
+    store->wd_section = 0;
+  } else if (flag != 1 || cols != 0)
+    error->all(FLERR,
+               "fix sph/astro/switch: custom property alpha_force exists but is not d_alpha_force");
+
   if (form_ == Form::CULLEN_DEHNEN) {
     if (atom->find_custom("divv_prev", flag, cols) < 0)
       modify->add_fix(std::string(DIVV_PREV_FIX_ID) + " all property/atom d_divv_prev");
@@ -135,6 +152,21 @@ double *FixSPHAstroSwitch::alpha()
   int flag, cols;
   alpha_index_ = atom->find_custom("alpha", flag, cols);
   return alpha_index_ >= 0 ? atom->dvector[alpha_index_] : nullptr;
+}
+
+double *FixSPHAstroSwitch::alpha_force()
+{
+  int flag, cols;
+  const int index = atom->find_custom("alpha_force", flag, cols);
+  return index >= 0 ? atom->dvector[index] : nullptr;
+}
+
+// created particles (create_atoms, fix deposit, ...) start at alpha_max
+void FixSPHAstroSwitch::set_arrays(int i)
+{
+  double *a = alpha(), *af = alpha_force();
+  if (a) a[i] = alpha_max_;
+  if (af) af[i] = alpha_max_;
 }
 
 void FixSPHAstroSwitch::init()
@@ -157,6 +189,22 @@ void FixSPHAstroSwitch::init()
   double *a = alpha();
   for (int i = 0; i < atom->nlocal; i++)
     if (!(a[i] >= alpha_min_ && a[i] <= alpha_max_)) a[i] = alpha_max_;
+}
+
+// a first run evaluates its setup forces with d_alpha; a continued one with the alpha of the
+// last force evaluation, as the step it continues
+void FixSPHAstroSwitch::setup_pre_force(int /*vflag*/)
+{
+  if (alpha_force_valid_) return;
+  pre_force(0);
+  alpha_force_valid_ = true;
+}
+
+void FixSPHAstroSwitch::pre_force(int /*vflag*/)
+{
+  const double *a = alpha();
+  double *af = alpha_force();
+  for (int i = 0; i < atom->nlocal; i++) af[i] = a[i];
 }
 
 // the div v of the setup force evaluation is the reference for the first step's d(div v)/dt;

@@ -37,8 +37,11 @@ class FixSPHAstroSwitch : public Fix {
   int setmask() override;
   void post_constructor() override;
   void init() override;
+  void setup_pre_force(int) override;
   void setup(int) override;
+  void pre_force(int) override;
   void final_integrate() override;
+  void set_arrays(int) override;
   double compute_vector(int) override;
 
   double *alpha();    // d_alpha (owned + ghost)
@@ -53,7 +56,9 @@ class FixSPHAstroSwitch : public Fix {
   Form form_;
   double alpha_min_, alpha_max_, ell_;
   int alpha_index_;
-  double *divv_prev();    // d_divv_prev (Cullen-Dehnen)
+  double *alpha_force();      // d_alpha_force: the alpha of the last force evaluation
+  bool alpha_force_valid_;    // d_alpha_force holds that value for every particle
+  double *divv_prev();        // d_divv_prev (Cullen-Dehnen)
   int needs_curl_;
   int h_index_;    // d_h
   class PairSPHAstro *pair_;

@@ -51,8 +51,8 @@ PairSPHAstro::PairSPHAstro(LAMMPS *lmp) :
     hstats_(new GradhStatistics()), state_(new StateIndex()), entropy_index_(new EntropyIndex()),
     continuity_index_(new ContinuityIndex()), step_index_(new StepIndex()), active_(nullptr),
     scheme_(new Scheme()), entropy_init_pending_(false), density_init_pending_(false),
-    alpha_atom_(nullptr), h_cap_start_(0.0), h_cap_(0.0), sph_type_(nullptr), kernel_radius_(2.0),
-    h_failures_(0), counts_step_(-1), computed_step_(-1), computed_nlocal_(-1),
+    alpha_atom_(nullptr), alpha_force_(nullptr), h_cap_start_(0.0), h_cap_(0.0), sph_type_(nullptr),
+    kernel_radius_(2.0), h_failures_(0), counts_step_(-1), computed_step_(-1), computed_nlocal_(-1),
     comm_table_(new CommTable())
 {
   single_enable = 0;
@@ -240,7 +240,7 @@ PassContext PairSPHAstro::context()
   ctx.vest = atom->darray[state_->vest];
   ctx.dudt = atom->dvector[state_->dudt];
   ctx.force = atom->f;
-  ctx.alpha = alpha_atom_;
+  ctx.alpha = alpha_force_;
   ctx.tag = atom->tag;
   ctx.error = error;
   ctx.tally = evflag ? this : nullptr;
@@ -306,11 +306,15 @@ void PairSPHAstro::compute(int eflag, int vflag)
   search.newton = force->newton_pair != 0;
   search.sph_type = sph_type_;
   lists_->update(atom->dvector[state_->h], search);
-  alpha_atom_ = nullptr;
+  alpha_atom_ = alpha_force_ = nullptr;
   if (scheme_->has_switch) {
     int flag, cols;
     const int index = atom->find_custom("alpha", flag, cols);
-    if (index >= 0) alpha_atom_ = atom->dvector[index];
+    const int force_index = atom->find_custom("alpha_force", flag, cols);
+    if (index >= 0 && force_index >= 0) {
+      alpha_atom_ = atom->dvector[index];
+      alpha_force_ = atom->dvector[force_index];
+    }
   }
 
   PassContext ctx = context();
