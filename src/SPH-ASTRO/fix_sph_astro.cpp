@@ -299,24 +299,7 @@ void FixSPHAstro::init()
     error->all(FLERR,
                "fix sph/astro: only one instance is allowed (it sets the global timestep); use "
                "one fix for all SPH particles");
-  // other integrators or timestep setters on the same particles
-  for (auto &other : modify->get_fix_list()) {
-    if (other == this) continue;
-    if (adaptive_ && utils::strmatch(other->style, "^dt/reset"))
-      error->all(FLERR,
-                 "fix sph/astro: fix {} ({}) also sets the timestep; fix sph/astro sets it from "
-                 "the SPH criteria (use its keywords dtmax, dtmin, or dt fixed)",
-                 other->id, other->style);
-    if (other->time_integrate && (group->bitmask[other->igroup] & groupbit) &&
-        group->count(igroup) > 0 && comm->me == 0)
-      error->warning(FLERR,
-                     "fix sph/astro: fix {} ({}) also integrates particles of group {}: they "
-                     "are moved twice per step",
-                     other->id, other->style, group->names[igroup]);
-  }
-  if (group->count(igroup) == 0 && comm->me == 0)
-    error->warning(FLERR, "fix sph/astro: group {} holds no particles: nothing is integrated",
-                   group->names[igroup]);
+  sentinel_->check_setting(this, adaptive_);
 
   // predictions are kept only when they belong to this step and v and u (and rho) are as the
   // last run left them (a continued or restarted run); after `velocity` or `set` they start
@@ -551,12 +534,16 @@ void FixSPHAstro::end_of_step()
     next_timestep(true);
   const bool iterate = hfix_ && hfix_->mode() == FixSPHAstroH::Mode::ITERATE;
   sentinel_->check(pair_, groupbit, adaptive_, iterate, [this]() {
-    if (steps_) return steps_->shortest_step();
-    return fmt::format("limited by atom {}: Courant dt {:.6g}, force dt {:.6g}, energy dt {:.6g}, "
-                       "conduction dt {:.6g}",
-                       last_limiting_atom_, last_dt_cv_, last_dt_force_, last_dt_energy_,
-                       last_dt_cond_);
+    return steps_ ? steps_->shortest_step() : limits();
   });
+}
+
+std::string FixSPHAstro::limits() const
+{
+  return fmt::format("limited by atom {}: Courant dt {:.6g}, force dt {:.6g}, energy dt {:.6g}, "
+                     "conduction dt {:.6g}",
+                     last_limiting_atom_, last_dt_cv_, last_dt_force_, last_dt_energy_,
+                     last_dt_cond_);
 }
 
 void FixSPHAstro::post_run()
@@ -642,7 +629,8 @@ void FixSPHAstro::criteria(int i, double dts[4]) const
 void FixSPHAstro::next_timestep(bool from_end_of_step)
 {
   double dt = update->dt;
-  if (adaptive_) {
+  // dt fixed: the criteria only for the sentinel's check that dt is stable
+  if (adaptive_ || sentinel_->watches_fixed_step()) {
     const int *mask = atom->mask;
     const int nlocal = atom->nlocal;
 
@@ -677,15 +665,17 @@ void FixSPHAstro::next_timestep(bool from_end_of_step)
     const double dtnew = all[which].value;
     last_limiting_atom_ = limiting[which];
     MPI_Bcast(&last_limiting_atom_, 1, MPI_LMP_TAGINT, all[which].rank, world);
+    if (!adaptive_)
+      sentinel_->check_fixed_step(dt, dtnew, [this]() {
+        return limits();
+      });
     // with no finite constraint (isolated cold particles) the step stays as it is
-    if (std::isfinite(dtnew)) dt = dtnew;
-    if (dtmax_ > 0.0) dt = MIN(dt, dtmax_);
-    if (dtmin_ > 0.0 && dt < dtmin_)
-      error->all(FLERR,
-                 "fix sph/astro: timestep {} fell below dtmin = {} at step {} (limited by atom "
-                 "{}: Courant dt {}, force dt {}, energy dt {}, conduction dt {})",
-                 dt, dtmin_, update->ntimestep, last_limiting_atom_, last_dt_cv_, last_dt_force_,
-                 last_dt_energy_, last_dt_cond_);
+    else if (std::isfinite(dtnew))
+      dt = dtnew;
+    if (adaptive_ && dtmax_ > 0.0) dt = MIN(dt, dtmax_);
+    if (adaptive_ && dtmin_ > 0.0 && dt < dtmin_)
+      error->all(FLERR, "fix sph/astro: timestep {} fell below dtmin = {} at step {} ({})", dt,
+                 dtmin_, update->ntimestep, limits());
   }
   if (tend_ > 0.0) {
     const double remaining = tend_ - current_time();
@@ -698,11 +688,9 @@ void FixSPHAstro::next_timestep(bool from_end_of_step)
   if (!(dt > 0.0) || !std::isfinite(dt)) {
     if (adaptive_)
       error->all(FLERR,
-                 "fix sph/astro: timestep {} at step {} is not positive and finite (limited by "
-                 "atom {}: Courant dt {}, force dt {}, energy dt {}, conduction dt {}); check "
+                 "fix sph/astro: timestep {} at step {} is not positive and finite ({}); check "
                  "that atom's velocity, force and state",
-                 dt, update->ntimestep, last_limiting_atom_, last_dt_cv_, last_dt_force_,
-                 last_dt_energy_, last_dt_cond_);
+                 dt, update->ntimestep, limits());
     error->all(FLERR, "fix sph/astro: timestep {} at step {} is not positive and finite", dt,
                update->ntimestep);
   }

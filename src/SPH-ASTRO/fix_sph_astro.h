@@ -120,6 +120,7 @@ class FixSPHAstro : public Fix {
 
   double last_dt_cv_, last_dt_force_, last_dt_energy_, last_dt_cond_;
   tagint last_limiting_atom_;
+  std::string limits() const;    // the limiting atom and its criteria, for messages
 
   // individual timesteps (steps individual; sph_astro_individual_steps.h), null: global
   SPHAstro::IndividualSteps *steps_;

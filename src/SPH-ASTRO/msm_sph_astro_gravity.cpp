@@ -47,8 +47,19 @@ MSMSPHAstroGravity::MSMSPHAstroGravity(LAMMPS *lmp) : MSM(lmp)
   ensure_mass_charge(lmp, STYLE);
 }
 
+void MSMSPHAstroGravity::settings(int narg, char **arg)
+{
+  check_accuracy(lmp, STYLE, narg, arg);
+  MSM::settings(narg, arg);
+}
+
 void MSMSPHAstroGravity::init()
 {
+  if (domain->dimension == 2)
+    error->all(FLERR,
+               "{}: LAMMPS' MSM works in 3d only; in 2d use pair_style sph/astro/gravity "
+               "without a kspace style (direct summation)",
+               STYLE);
   if (domain->xperiodic || domain->yperiodic || domain->zperiodic)
     error->all(FLERR,
                "{}: boundary {} is periodic; MSM gravity needs non-periodic boundaries (f, s "

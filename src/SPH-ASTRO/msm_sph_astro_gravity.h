@@ -25,6 +25,7 @@ namespace LAMMPS_NS {
 class MSMSPHAstroGravity : public MSM {
  public:
   MSMSPHAstroGravity(class LAMMPS *);
+  void settings(int, char **) override;
   void init() override;
   void setup() override;
   void compute(int, int) override;

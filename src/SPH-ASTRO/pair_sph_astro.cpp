@@ -51,9 +51,9 @@ PairSPHAstro::PairSPHAstro(LAMMPS *lmp) :
     hstats_(new GradhStatistics()), state_(new StateIndex()), entropy_index_(new EntropyIndex()),
     continuity_index_(new ContinuityIndex()), step_index_(new StepIndex()), active_(nullptr),
     scheme_(new Scheme()), entropy_init_pending_(false), density_init_pending_(false),
-    alpha_atom_(nullptr), alpha_force_(nullptr), h_cap_start_(0.0), h_cap_(0.0), sph_type_(nullptr),
-    kernel_radius_(2.0), h_failures_(0), counts_step_(-1), computed_step_(-1), computed_nlocal_(-1),
-    comm_table_(new CommTable())
+    entropy_gamma_(0.0), alpha_atom_(nullptr), alpha_force_(nullptr), h_cap_start_(0.0),
+    h_cap_(0.0), sph_type_(nullptr), kernel_radius_(2.0), h_failures_(0), counts_step_(-1),
+    computed_step_(-1), computed_nlocal_(-1), comm_table_(new CommTable())
 {
   single_enable = 0;
   restartinfo = 1;
@@ -96,6 +96,8 @@ void PairSPHAstro::settings(int narg, char **arg)
   // created here or, after read_restart, by fix sph/astro (then LAMMPS restores its values)
   if (opt_->density_continuity)
     ensure_continuity_state(lmp, "pair_style sph/astro density continuity");
+  // the state (d_h, d_u, ...) exists from here on, so `set group all d_h` may follow
+  ensure_state(lmp, "pair_style sph/astro");
 }
 
 // pair_coeff * *  (all pairs of SPH particle types; no parameters)
@@ -129,6 +131,17 @@ void PairSPHAstro::init_style()
   h_failures_ = 0;
   if (scheme_->entropy && !find_entropy_state(lmp, *entropy_index_))
     error->all(FLERR, "pair_style sph/astro: the entropy state fix {} is missing", ENTROPY_FIX_ID);
+  // A = (gamma - 1) u / rho^(gamma - 1) holds for the gamma it was derived with: with another
+  // gamma it is derived anew from u (u and the thermal energy continue)
+  if (scheme_->entropy && entropy_gamma_ > 0.0 && entropy_gamma_ != o.eos.gamma) {
+    if (comm->me == 0)
+      error->warning(FLERR,
+                     "pair_style sph/astro: gamma is {} where the entropic function A of fix "
+                     "sph/astro thermal entropy was derived with {}: A is derived anew from u",
+                     o.eos.gamma, entropy_gamma_);
+    entropy_init_pending_ = true;
+  }
+  if (scheme_->entropy) entropy_gamma_ = o.eos.gamma;
   if (domain->dimension != 2 && domain->dimension != 3)
     error->all(FLERR, "pair_style sph/astro: dimension {} not supported", domain->dimension);
   if (o.density_continuity && !find_continuity_state(lmp, *continuity_index_))
@@ -160,6 +173,9 @@ void PairSPHAstro::init_style()
     hmax_local = MAX(hmax_local, h[i]);
   }
   MPI_Allreduce(&hmax_local, &hmax, 1, MPI_DOUBLE, MPI_MAX, world);
+  if (atom->natoms == 0)
+    error->all(FLERR,
+               "pair_style sph/astro: the system holds no particles (create_atoms, read_data)");
   if (hmax <= 0.0)
     error->all(FLERR, "pair_style sph/astro: no particle has h > 0 (set group all d_h VALUE)");
   // (an h above fix sph/astro/h hmax at the start keeps its value: the cap is not below it)
@@ -426,6 +442,7 @@ void PairSPHAstro::write_restart_settings(FILE *fp)
 void PairSPHAstro::read_restart_settings(FILE *fp)
 {
   opt_->read_restart(lmp, fp);
+  entropy_gamma_ = opt_->eos.gamma;    // of the run that wrote the file (thermal entropy: A)
   kernel_radius_ = opt_->kernel_radius();
 }
 

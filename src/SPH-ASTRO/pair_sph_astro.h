@@ -140,6 +140,7 @@ class PairSPHAstro : public Pair {
 
   SPHAstro::Scheme *scheme_;    // what the package's fixes ask for (sph_astro_scheme.h)
   bool entropy_init_pending_, density_init_pending_;
+  double entropy_gamma_;    // gamma of the last run with thermal entropy (0: none)
   double *alpha_atom_;      // d_alpha of fix sph/astro/switch: the current alpha (timestep)
   double *alpha_force_;     // d_alpha_force: the alpha the forces use (fix_sph_astro_switch.cpp)
   double h_cap_start_;      // margin x the largest h at init (sets the ghost cutoff)

@@ -36,6 +36,12 @@ PPPMSPHAstroGravity::PPPMSPHAstroGravity(LAMMPS *lmp) : PPPM(lmp)
   ensure_mass_charge(lmp, STYLE);
 }
 
+void PPPMSPHAstroGravity::settings(int narg, char **arg)
+{
+  check_accuracy(lmp, STYLE, narg, arg);
+  PPPM::settings(narg, arg);
+}
+
 void PPPMSPHAstroGravity::init()
 {
   if (domain->nonperiodic)

@@ -25,6 +25,7 @@ namespace LAMMPS_NS {
 class PPPMSPHAstroGravity : public PPPM {
  public:
   PPPMSPHAstroGravity(class LAMMPS *);
+  void settings(int, char **) override;
   void init() override;
   void compute(int, int) override;
 

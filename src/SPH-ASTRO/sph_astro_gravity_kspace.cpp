@@ -19,6 +19,7 @@
 #include "lammps.h"
 #include "modify.h"
 #include "pair.h"
+#include "utils.h"
 
 #include <cmath>
 #include <mpi.h>
@@ -109,6 +110,17 @@ ScopedGravityConstants::~ScopedGravityConstants()
   force_->qqrd2e = qqrd2e_;
   force_->qelectron = qelectron_;
   force_->angstrom = angstrom_;
+}
+
+void check_accuracy(LAMMPS *lmp, const char *caller, int narg, char **arg)
+{
+  if (narg < 1) utils::missing_cmd_args(FLERR, caller, lmp->error);
+  const double accuracy = utils::numeric(FLERR, arg[0], false, lmp);
+  if (!(accuracy > 0.0))
+    lmp->error->all(FLERR,
+                    "{}: accuracy {} must be > 0 (the relative error of the gravitational "
+                    "forces, e.g. 1e-4)",
+                    caller, arg[0]);
 }
 
 }    // namespace SPHAstro

@@ -53,6 +53,10 @@ double gravity_reference_force(LAMMPS_NS::LAMMPS *lmp, double G);
 // the box's boundary command, e.g. "p p f" or "ss mm f"
 std::string boundary_string(LAMMPS_NS::LAMMPS *lmp);
 
+// kspace_style ... accuracy: a relative force error > 0 (LAMMPS' PPPM and MSM would take its
+// absolute value, or fail later without naming it)
+void check_accuracy(LAMMPS_NS::LAMMPS *lmp, const char *caller, int narg, char **arg);
+
 // swaps the Coulomb constants of Force for the gravitational ones while it lives
 class ScopedGravityConstants {
  public:

@@ -14,6 +14,9 @@
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
+#include "fix.h"
+#include "group.h"
+#include "modify.h"
 #include "update.h"
 #include "utils.h"
 
@@ -57,7 +60,7 @@ bool StabilitySentinel::parse(const std::string &key, const char *val)
 
 void StabilitySentinel::start_run()
 {
-  dt_reported_ = h_reported_ = isolated_reported_ = false;
+  dt_reported_ = h_reported_ = isolated_reported_ = fixed_reported_ = false;
   dt_run_start_ = 0.0;
 }
 
@@ -74,10 +77,49 @@ void StabilitySentinel::check_velocities(int groupbit, const char *when)
                  atom->tag[i], v[i][0], v[i][1], v[i][2], when, update->ntimestep);
 }
 
+// other integrators or timestep setters on the same particles, an empty group, minimize
+void StabilitySentinel::check_setting(Fix *self, bool adaptive)
+{
+  if (update->whichflag == 2)
+    error->all(FLERR,
+               "fix sph/astro: minimize is not supported: SPH forces are not the gradient of a "
+               "potential energy; relax a state with run and fix viscous, or damp it with a "
+               "large artificial viscosity");
+  const int groupbit = self->groupbit, igroup = self->igroup;
+  for (auto &other : modify->get_fix_list()) {
+    if (other == self) continue;
+    if (adaptive && utils::strmatch(other->style, "^dt/reset"))
+      error->all(FLERR,
+                 "fix sph/astro: fix {} ({}) also sets the timestep; fix sph/astro sets it from "
+                 "the SPH criteria (use its keywords dtmax, dtmin, or dt fixed)",
+                 other->id, other->style);
+    if (other->time_integrate && (group->bitmask[other->igroup] & groupbit) &&
+        group->count(igroup) > 0 && comm->me == 0)
+      error->warning(FLERR,
+                     "fix sph/astro: fix {} ({}) also integrates particles of group {}: they "
+                     "are moved twice per step",
+                     other->id, other->style, group->names[igroup]);
+  }
+  if (group->count(igroup) == 0 && comm->me == 0)
+    error->warning(FLERR, "fix sph/astro: group {} holds no particles: nothing is integrated",
+                   group->names[igroup]);
+}
+
 void StabilitySentinel::report(const std::string &message)
 {
   if (action_ == Action::STOP) error->all(FLERR, message + " (sentinel stop)");
   if (comm->me == 0) error->warning(FLERR, message);
+}
+
+void StabilitySentinel::check_fixed_step(double dt, double stable,
+                                         const std::function<std::string()> &cause)
+{
+  if (!watches_fixed_step() || !(dt > stable)) return;
+  fixed_reported_ = true;
+  report(fmt::format("fix sph/astro dt fixed: the timestep {:.6g} at step {} is {:.3g} times "
+                     "the longest stable step {:.6g} ({}); the run may blow up (negative u, "
+                     "density or h): lower the timestep or use dt adaptive",
+                     dt, update->ntimestep, dt / stable, stable, cause()));
 }
 
 void StabilitySentinel::check(PairSPHAstro *pair, int groupbit, bool adaptive, bool iterate,

@@ -21,8 +21,9 @@
 #include <string>
 
 namespace LAMMPS_NS {
+class Fix;
 class PairSPHAstro;
-}
+}    // namespace LAMMPS_NS
 
 namespace SPHAstro {
 
@@ -39,12 +40,20 @@ class StabilitySentinel : protected LAMMPS_NS::Pointers {
   // it (called only for a report); iterate: the pair's h statistics belong to an h iteration
   void check(LAMMPS_NS::PairSPHAstro *pair, int groupbit, bool adaptive, bool iterate,
              const std::function<std::string()> &cause);
+  // at init: minimize, another integrator or fix dt/reset on the particles of self (fix
+  // sph/astro), an empty group
+  void check_setting(LAMMPS_NS::Fix *self, bool adaptive);
+  // dt fixed: false when off or reported already (then the criteria need not be taken)
+  bool watches_fixed_step() const { return action_ != Action::OFF && !fixed_reported_; }
+  // dt fixed: a step longer than the shortest criterion step (cause: what sets that one)
+  void check_fixed_step(double dt, double stable, const std::function<std::string()> &cause);
 
  private:
   enum class Action { OFF, WARN, STOP } action_ = Action::WARN;
   double collapse_ = 1e-6, hshare_ = 0.05;
   double dt_run_start_ = 0.0;
   bool dt_reported_ = false, h_reported_ = false, isolated_reported_ = false;
+  bool fixed_reported_ = false;
   void report(const std::string &message);
 };
 

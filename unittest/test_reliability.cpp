@@ -1,0 +1,128 @@
+/* ----------------------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
+// LAMMPS-driven tests of what a user who gets a setting wrong is told: a timestep fixed above
+// the stability limit, minimize, an empty system, the order of pair_style and set, a restart
+// continued with another gamma, and the accuracy and dimension of the gravity kspace styles.
+
+#include "styles_fixture.h"
+
+#include "atom.h"
+
+#include <cmath>
+#include <cstdio>
+
+using namespace sph_astro_test;
+using LAMMPS_NS::LAMMPS;
+
+namespace {
+
+// a small fcc box with the SPH styles and a state
+class Setting : public BadInputTest {
+ protected:
+  void sph(const std::string &fix = "sph/astro")
+  {
+    commands(lmp,
+             {"pair_style " + std::string(PAIR), "pair_coeff * *", "fix gas all " + fix,
+              "set group all d_h 0.9", "set group all d_u 1.0"});
+  }
+};
+
+}    // namespace
+
+// dt fixed far above the Courant limit: the sentinel names the factor, the limiting atom and
+// the remedy at the first step (sentinel stop makes it an error), not only the negative u that
+// follows
+TEST_F(Setting, FixedTimestepAboveTheStableStepIsReported)
+{
+  sph("sph/astro dt fixed sentinel stop");
+  commands(lmp, {"velocity all create 0.5 4711", "timestep 0.5"});
+  const std::string message = error_of(lmp, "run 10");
+  EXPECT_NE(message.find("dt fixed: the timestep 0.5 at step 0 is"), std::string::npos) << message;
+  EXPECT_NE(message.find("times the longest stable step"), std::string::npos) << message;
+  EXPECT_NE(message.find("limited by atom"), std::string::npos) << message;
+  // a stable fixed step runs
+  commands(lmp, {"timestep 0.001"});
+  EXPECT_EQ(error_of(lmp, "run 10"), "");
+}
+
+TEST_F(Setting, MinimizeIsRefused)
+{
+  sph();
+  expect_error("minimize 1e-4 1e-4 10 10", "fix sph/astro: minimize is not supported");
+}
+
+TEST_F(Setting, SystemWithoutParticles)
+{
+  sph();
+  commands(lmp, {"delete_atoms group all"});
+  expect_error("run 1", "pair_style sph/astro: the system holds no particles");
+}
+
+// the state exists from pair_style on, so set may come before the fix
+TEST_F(Setting, StateCanBeSetAfterPairStyle)
+{
+  commands(lmp,
+           {"pair_style " + std::string(PAIR), "pair_coeff * *", "set group all d_h 0.9",
+            "set group all d_u 1.0", "fix gas all sph/astro"});
+  EXPECT_EQ(error_of(lmp, "run 1"), "");
+}
+
+// thermal entropy continued with another gamma: A is derived anew from u, so the thermal energy
+// continues through the next (tiny) step, where u = A rho^(gamma-1)/(gamma-1) of the old A
+// would change it by tens of per cent; with the file's gamma A is kept
+TEST(EntropyRestart, AnotherGammaKeepsTheThermalEnergy)
+{
+  const std::string restart = "test_reliability_entropy.restart";
+  double etherm_ref;
+  {
+    auto lmp = open_lammps();
+    gas(lmp, "box", 3, PAIR, "sph/astro courant 0.3 thermal entropy");
+    commands(lmp, {"velocity all create 0.5 4928459", "run 10", "write_restart " + restart});
+    etherm_ref = global_vector(lmp, "sum", 12)[ETHERM];
+  }
+  ASSERT_GT(etherm_ref, 0.0);
+  for (const char *gamma : {"1.4", ""}) {
+    auto lmp = open_lammps();
+    commands(lmp, {"read_restart " + restart});
+    if (*gamma) commands(lmp, {"pair_style sph/astro eos ideal " + std::string(gamma)});
+    commands(lmp,
+             {"pair_coeff * *", "fix gas all sph/astro dt fixed thermal entropy", "timestep 1e-6",
+              "neighbor " + num(0.3 * 1.2 * std::cbrt(0.25)) + " bin",
+              "compute sum all sph/astro/global", "thermo_style custom step c_sum[9]", "run 1"});
+    const double etherm = global_vector(lmp, "sum", 12)[ETHERM];
+    EXPECT_NEAR(etherm / etherm_ref, 1.0, 1e-5) << "gamma " << (*gamma ? gamma : "of the file");
+  }
+  std::remove(restart.c_str());
+}
+
+TEST_F(Setting, GravityAccuracyMustBePositive)
+{
+  commands(lmp,
+           {"pair_style hybrid/overlay " + std::string(PAIR) + " sph/astro/gravity 2.5",
+            "pair_coeff * * sph/astro", "pair_coeff * * sph/astro/gravity"});
+  expect_error("kspace_style pppm/sph/astro/gravity -1e-4",
+               "pppm/sph/astro/gravity: accuracy -1e-4 must be > 0");
+  expect_error("kspace_style msm/sph/astro/gravity 0", "msm/sph/astro/gravity: accuracy 0 must");
+}
+
+TEST(GravityKSpace, MSMIn2dNamesTheAlternative)
+{
+  auto lmp = open_lammps();
+  commands(lmp,
+           {"units lj", "dimension 2", "atom_style atomic", "atom_modify map array",
+            "lattice sq 1.0", "region box block 0 6 0 6 -0.5 0.5", "create_box 1 box",
+            "create_atoms 1 box", "mass 1 1",
+            "pair_style hybrid/overlay " + std::string(PAIR) + " sph/astro/gravity 2.5",
+            "pair_coeff * * sph/astro", "pair_coeff * * sph/astro/gravity",
+            "kspace_style msm/sph/astro/gravity 1e-4", "fix gas all sph/astro",
+            "set group all d_h 1.2", "set group all d_u 1.0"});
+  const std::string message = error_of(lmp, "run 0");
+  EXPECT_NE(message.find("MSM works in 3d only; in 2d use pair_style sph/astro/gravity"),
+            std::string::npos)
+      << message;
+}
