@@ -15,6 +15,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 
 using namespace sph_astro_test;
 using LAMMPS_NS::LAMMPS;
@@ -125,4 +127,30 @@ TEST(GravityKSpace, MSMIn2dNamesTheAlternative)
   EXPECT_NE(message.find("MSM works in 3d only; in 2d use pair_style sph/astro/gravity"),
             std::string::npos)
       << message;
+}
+
+// a restart of a variable-h run continued without fix sph/astro/h: the pair style warns that h
+// stays fixed (in the log); with the fix defined again it does not
+TEST(VariableHRestart, ContinuedWithoutTheHFixIsWarned)
+{
+  const std::string restart = "test_reliability_h.restart", log = "test_reliability_h.log";
+  {
+    auto lmp = open_lammps();
+    gas(lmp, "box", 3, PAIR, "sph/astro courant 0.3");
+    commands(lmp, {"fix hvar all sph/astro/h iterate", "run 5", "write_restart " + restart});
+  }
+  for (bool with_fix : {false, true}) {
+    auto lmp = open_lammps();
+    commands(lmp, {"log " + log, "read_restart " + restart, "fix gas all sph/astro courant 0.3"});
+    if (with_fix) commands(lmp, {"fix hvar all sph/astro/h iterate"});
+    commands(lmp, {"neighbor " + num(0.3 * 1.2 * std::cbrt(0.25)) + " bin", "run 1", "log none"});
+    std::ifstream in(log);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(text.find("comes from a run with fix sph/astro/h; this run has none") !=
+                  std::string::npos,
+              !with_fix)
+        << (with_fix ? "with" : "without") << " fix sph/astro/h";
+  }
+  std::remove(restart.c_str());
+  std::remove(log.c_str());
 }

@@ -142,6 +142,12 @@ void PairSPHAstro::init_style()
     entropy_init_pending_ = true;
   }
   if (scheme_->entropy) entropy_gamma_ = o.eos.gamma;
+  if (restart_variable_h_ && scheme_->hmode == Scheme::HMode::FIXED && comm->me == 0)
+    error->warning(FLERR,
+                   "pair_style sph/astro: the restart file comes from a run with fix "
+                   "sph/astro/h; this run has none, so every h stays at its stored value (define "
+                   "fix sph/astro/h again after read_restart)");
+  restart_variable_h_ = false;
   if (domain->dimension != 2 && domain->dimension != 3)
     error->all(FLERR, "pair_style sph/astro: dimension {} not supported", domain->dimension);
   if (o.density_continuity && !find_continuity_state(lmp, *continuity_index_))
@@ -436,12 +442,12 @@ void PairSPHAstro::read_restart(FILE *fp)
 
 void PairSPHAstro::write_restart_settings(FILE *fp)
 {
-  opt_->write_restart(fp);
+  opt_->write_restart(fp, scheme_->hmode != Scheme::HMode::FIXED);
 }
 
 void PairSPHAstro::read_restart_settings(FILE *fp)
 {
-  opt_->read_restart(lmp, fp);
+  restart_variable_h_ = opt_->read_restart(lmp, fp);
   entropy_gamma_ = opt_->eos.gamma;    // of the run that wrote the file (thermal entropy: A)
   kernel_radius_ = opt_->kernel_radius();
 }

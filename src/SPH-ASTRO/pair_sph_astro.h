@@ -140,13 +140,14 @@ class PairSPHAstro : public Pair {
 
   SPHAstro::Scheme *scheme_;    // what the package's fixes ask for (sph_astro_scheme.h)
   bool entropy_init_pending_, density_init_pending_;
-  double entropy_gamma_;    // gamma of the last run with thermal entropy (0: none)
-  double *alpha_atom_;      // d_alpha of fix sph/astro/switch: the current alpha (timestep)
-  double *alpha_force_;     // d_alpha_force: the alpha the forces use (fix_sph_astro_switch.cpp)
-  double h_cap_start_;      // margin x the largest h at init (sets the ghost cutoff)
-  double h_cap_;            // (ghost cutoff - skin) / kernel_radius_
-  int *sph_type_;           // per type: 1 if this pair style acts on it
-  double kernel_radius_;    // the support is kernel_radius_ h
+  double entropy_gamma_;       // gamma of the last run with thermal entropy (0: none)
+  bool restart_variable_h_;    // the restart file read comes from a run with variable h
+  double *alpha_atom_;         // d_alpha of fix sph/astro/switch: the current alpha (timestep)
+  double *alpha_force_;        // d_alpha_force: the alpha the forces use (fix_sph_astro_switch.cpp)
+  double h_cap_start_;         // margin x the largest h at init (sets the ghost cutoff)
+  double h_cap_;               // (ghost cutoff - skin) / kernel_radius_
+  int *sph_type_;              // per type: 1 if this pair style acts on it
+  double kernel_radius_;       // the support is kernel_radius_ h
   bigint h_failures_;
   bigint counts_step_;    // step whose force evaluation the neighbour counts belong to
   bigint computed_step_;

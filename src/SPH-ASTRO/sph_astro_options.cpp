@@ -274,8 +274,9 @@ void PairOptions::check_scheme(LAMMPS *lmp, bool gradh, bool entropy, bool has_s
   }
 }
 
-// layout: 3 ints (kernel, eos, viscosity bits), 7 doubles, kappa, option bits, trigger, gate
-void PairOptions::write_restart(FILE *fp) const
+// layout: 3 ints (kernel, eos, viscosity bits), 7 doubles, kappa, option bits (8: variable h),
+// trigger, gate
+void PairOptions::write_restart(FILE *fp, bool variable_h) const
 {
   const int ival[3] = {static_cast<int>(kernel), static_cast<int>(eos.type),
                        (has_viscosity() ? 1 : 0) + (balsara ? 2 : 0) +
@@ -285,13 +286,13 @@ void PairOptions::write_restart(FILE *fp) const
   fwrite(dval, sizeof(double), 7, fp);
   fwrite(&conduction, sizeof(double), 1, fp);
   const int options = (density_continuity ? 1 : 0) + (symmetrise_kernel ? 2 : 0) +
-      (pressure_geometric ? 4 : 0) + (pressure_energy ? 16 : 0);    // 8: unused
+      (pressure_geometric ? 4 : 0) + (variable_h ? 8 : 0) + (pressure_energy ? 16 : 0);
   fwrite(&options, sizeof(int), 1, fp);
   fwrite(&recon_trigger, sizeof(double), 1, fp);
   fwrite(&recon_gate, sizeof(int), 1, fp);
 }
 
-void PairOptions::read_restart(LAMMPS *lmp, FILE *fp)
+bool PairOptions::read_restart(LAMMPS *lmp, FILE *fp)
 {
   int ival[3] = {0, 0, 0}, options = 0, gate = 16;
   double dval[7] = {}, kappa = 0.0, trigger = 1.0;
@@ -333,6 +334,7 @@ void PairOptions::read_restart(LAMMPS *lmp, FILE *fp)
   pressure_energy = (options & 16) != 0;
   recon_trigger = trigger;
   recon_gate = gate;
+  return (options & 8) != 0;
 }
 
 }    // namespace SPHAstro

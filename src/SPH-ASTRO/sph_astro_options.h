@@ -49,9 +49,10 @@ struct PairOptions {
   void parse(LAMMPS_NS::LAMMPS *lmp, int narg, char **arg);
   // errors (and warnings) for options that do not fit the rest of the scheme
   void check_scheme(LAMMPS_NS::LAMMPS *lmp, bool gradh, bool entropy, bool has_switch) const;
-  void write_restart(FILE *fp) const;
+  // variable_h: the writing run had fix sph/astro/h (returned by read_restart)
+  void write_restart(FILE *fp, bool variable_h) const;
   // rank 0 reads, every rank receives
-  void read_restart(LAMMPS_NS::LAMMPS *lmp, FILE *fp);
+  bool read_restart(LAMMPS_NS::LAMMPS *lmp, FILE *fp);
 
   bool has_viscosity() const { return viscosity != ViscosityForm::NONE; }
   bool signal_viscosity() const { return viscosity == ViscosityForm::SIGNAL; }
