@@ -400,9 +400,14 @@ void PairSPHAstro::reverse(std::initializer_list<CommField> fields)
   if (size) comm->reverse_comm(this, size);
 }
 
-int PairSPHAstro::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, int * /*pbc*/)
+int PairSPHAstro::pack_forward_comm(int n, int *list, double *buf, int pbc_flag, int *pbc)
 {
-  return comm_table_->pack(n, list, buf);
+  if (!pbc_flag || !domain->deform_vremap) return comm_table_->pack(n, list, buf);
+  // fix deform remap v: an image across a periodic boundary moves with the box's rate
+  const double *rate = domain->h_rate;
+  const double dv[3] = {pbc[0] * rate[0] + pbc[5] * rate[5] + pbc[4] * rate[4],
+                        pbc[1] * rate[1] + pbc[3] * rate[3], pbc[2] * rate[2]};
+  return comm_table_->pack(n, list, buf, dv, atom->mask, domain->deform_groupbit);
 }
 
 void PairSPHAstro::unpack_forward_comm(int n, int first, double *buf)

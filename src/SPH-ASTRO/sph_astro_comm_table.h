@@ -22,7 +22,8 @@ struct CommField {
   double *scalar;
   double **vector;
   int ncol;
-  bool max;    // reverse: keep the larger value instead of the sum
+  bool max;                 // reverse: keep the larger value instead of the sum
+  bool velocity = false;    // forward: a velocity (fix deform remap v shifts it across boundaries)
 };
 
 class CommTable {
@@ -45,14 +46,22 @@ class CommTable {
     return size_;
   }
 
-  // the buffer holds the fields one after the other (each for all n atoms)
-  int pack(int n, const int *list, double *buf) const
+  // the buffer holds the fields one after the other (each for all n atoms); dv: the velocity
+  // shift of the atoms with (mask & groupbit) across this boundary, or nullptr (as LAMMPS'
+  // AtomVec::pack_comm_vel() with fix deform remap v)
+  int pack(int n, const int *list, double *buf, const double *dv = nullptr,
+           const int *mask = nullptr, int groupbit = 0) const
   {
     int m = 0;
     for (int c = 0; c < n_; c++) {
       const Field &f = fields_[c];
       if (f.scalar)
         for (int k = 0; k < n; k++) buf[m++] = f.scalar[list[k]];
+      else if (dv && f.velocity)
+        for (int k = 0; k < n; k++) {
+          const bool shift = (mask[list[k]] & groupbit) != 0;
+          for (int d = 0; d < 3; d++) buf[m++] = f.vector[list[k]][d] + (shift ? dv[d] : 0.0);
+        }
       else
         for (int k = 0; k < n; k++)
           for (int d = 0; d < f.ncol; d++) buf[m++] = f.vector[list[k]][d];

@@ -89,7 +89,7 @@ void ForceEvaluation::density(const GradhSettings &gradh, GradhStatistics &hstat
   Fields &f = *ctx_.f;
   if (o_.pressure_energy) exchange_.forward({{ctx_.uest, nullptr, 1, false}});    // their u
   if (scheme_.gradh()) {
-    if (gradh.sums != VelocitySums::NONE) exchange_.forward({{nullptr, ctx_.vest, 3, false}});
+    if (gradh.sums != VelocitySums::NONE) exchange_.forward({{nullptr, ctx_.vest, 3, false, true}});
     density_gradh(ctx_, gradh, hstats);
     result.counted = true;
     result.h_failures = hstats.failures;
@@ -120,7 +120,7 @@ void ForceEvaluation::gradients()
   const bool gradh = scheme_.gradh();
   if (o_.reconstruction()) {    // grad v (and from it div v and curl v)
     if (!gradh) {
-      exchange_.forward({{nullptr, ctx_.vest, 3, false}});
+      exchange_.forward({{nullptr, ctx_.vest, 3, false, true}});
       velocity_sums(ctx_, o_.symmetrise_kernel, VelocitySums::GRADIENT);
       if (ctx_.newton) exchange_.reverse({{nullptr, f.vgsum, VGRAD_SUMS, false}});
     }
@@ -128,7 +128,7 @@ void ForceEvaluation::gradients()
     if (scheme_.curl) finish_curl(ctx_, gradh, o_.balsara);
   } else if (scheme_.curl) {
     if (!gradh) {    // (with grad-h terms the sums come from the h iteration)
-      exchange_.forward({{nullptr, ctx_.vest, 3, false}});
+      exchange_.forward({{nullptr, ctx_.vest, 3, false, true}});
       velocity_sums(ctx_, o_.symmetrise_kernel, VelocitySums::CURL);
       if (ctx_.newton) exchange_.reverse({{nullptr, f.dcurl, 4, false}});
     }
@@ -147,7 +147,7 @@ void ForceEvaluation::forward_state()
   exchange_.forward({{ctx_.rho, nullptr, 1, false},
                      {f.pressure, nullptr, 1, false},
                      {f.soundspeed, nullptr, 1, false},
-                     {nullptr, ctx_.vest, 3, false},
+                     {nullptr, ctx_.vest, 3, false, true},
                      {gradh ? f.omega : nullptr, nullptr, 1, false},
                      {gradh && o_.pressure_energy ? f.pe_gradh : nullptr, nullptr, 1, false},
                      {ctx_.alpha, nullptr, 1, false},

@@ -77,7 +77,8 @@ void StabilitySentinel::check_velocities(int groupbit, const char *when)
                  atom->tag[i], v[i][0], v[i][1], v[i][2], when, update->ntimestep);
 }
 
-// other integrators or timestep setters on the same particles, an empty group, minimize
+// other integrators or timestep setters on the same particles, fix deform with the adaptive
+// timestep, an empty group, minimize
 void StabilitySentinel::check_setting(Fix *self, bool adaptive)
 {
   if (update->whichflag == 2)
@@ -93,6 +94,13 @@ void StabilitySentinel::check_setting(Fix *self, bool adaptive)
                  "fix sph/astro: fix {} ({}) also sets the timestep; fix sph/astro sets it from "
                  "the SPH criteria (use its keywords dtmax, dtmin, or dt fixed)",
                  other->id, other->style);
+    if (adaptive && utils::strmatch(other->style, "^deform") && comm->me == 0)
+      error->warning(FLERR,
+                     "fix sph/astro: fix {} (deform) strains the box by the same amount every "
+                     "step, set from the timestep at the run's start, while fix sph/astro "
+                     "changes the timestep: the box and the particles' flow disagree; use dt "
+                     "fixed",
+                     other->id);
     if (other->time_integrate && (group->bitmask[other->igroup] & groupbit) &&
         group->count(igroup) > 0 && comm->me == 0)
       error->warning(FLERR,
