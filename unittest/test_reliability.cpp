@@ -158,10 +158,10 @@ TEST(VariableHRestart, ContinuedWithoutTheHFixIsWarned)
 }
 
 // fix deform remap v (dt fixed: fix deform strains the box per step): the ghosts across a
-// periodic boundary carry the box's velocity, so an
-// expansion v_x = 2 (x - xlo) has div v = 2 at every particle (it was -5 at the boundary with
-// the unshifted ghost velocity), and a uniform shear v_x = g (y - ylo) has div v = 0 and the
-// same viscous heating at the boundary as inside (erate: d(xy)/dt = 0.125 ly)
+// periodic boundary carry the box's velocity, so an expansion v_x = 2 x has div v = 2 at every
+// particle (-3.75 at the boundary with unshifted ghost velocities), and a uniform shear
+// v_x = 0.125 y (xy erate 0.125: d(xy)/dt = 0.125 ly) has div v = 0 and the same viscous
+// heating at the boundary as inside (26 times more there with unshifted ghost velocities)
 TEST(DeformRemapV, GhostsCarryTheFlowAcrossTheBoundary)
 {
   for (const bool shear : {false, true}) {
