@@ -620,7 +620,9 @@ TEST_F(BadInput, VelocitiesAndOtherIntegrators)
   lmp->atom->v[lmp->atom->map(5)][0] = NAN;    // (set takes no NaN)
   expect_error("run 1", "atom 5 has velocity (nan, 0, 0) at the start of the run");
   commands(lmp, {"set atom 5 vx 1e300", "set atom 5 vy 1e300"});
-  expect_error("run 1", "is not positive and finite (limited by atom ");
+  expect_error("run 1",
+               "atom 5 has velocity (1e+300, 1e+300, 0) at the start of the run (step 0); "
+               "velocities must be finite, with a finite square");
   commands(lmp, {"set atom 5 vx 0.0 vy 0.0", "fix reset all dt/reset 1 NULL 0.1 0.1"});
   expect_error("run 0", "fix reset (dt/reset) also sets the timestep");
   commands(lmp, {"unfix reset", "fix twice all nve"});

@@ -7,7 +7,9 @@
 
 // LAMMPS-driven tests of what a user who gets a setting wrong is told: a timestep fixed above
 // the stability limit, minimize, an empty system, the order of pair_style and set, a restart
-// continued with another gamma, and the accuracy and dimension of the gravity kspace styles.
+// continued with another gamma, the accuracy and dimension of the gravity kspace styles, a
+// particle that alone sets the timestep, a kernel support longer than the box; and runs that
+// must not depend on LAMMPS' neighbor style.
 
 #include "styles_fixture.h"
 
@@ -206,5 +208,98 @@ TEST(DeformRemapV, GhostsCarryTheFlowAcrossTheBoundary)
     }
     printf("%s: div v %.8g .. %.8g, du/dt %.6g .. %.6g\n", what, divv_min, divv_max, dudt_min,
            dudt_max);
+  }
+}
+
+// one particle far faster than the rest sets the timestep alone: the sentinel names it at the
+// start of the run (sentinel stop: as an error); an ordinary speed passes
+TEST_F(Setting, ParticleThatAloneSetsTheTimestepIsNamed)
+{
+  sph("sph/astro sentinel stop");
+  commands(lmp, {"set atom 5 vx 1e30"});
+  const std::string message = error_of(lmp, "run 1");
+  EXPECT_NE(message.find("atom 5 moves at |v| = 1e+30"), std::string::npos) << message;
+  EXPECT_NE(message.find("times the typical signal speed"), std::string::npos) << message;
+  commands(lmp, {"set atom 5 vx 10"});
+  EXPECT_EQ(error_of(lmp, "run 1"), "");
+}
+
+// a finite velocity whose square overflows (kinetic energy, signal speeds) stops the run at once
+TEST_F(Setting, VelocityWhoseSquareOverflowsIsNamed)
+{
+  sph();
+  commands(lmp, {"set atom 7 vy 1e200"});
+  expect_error("run 1",
+               "fix sph/astro: atom 7 has velocity (0, 1e+200, 0) at the start of the run");
+}
+
+// a kernel support longer than the periodic box: the particle meets its own images (the lists
+// and the cost grow as the ratio cubed); the sentinel names the atom, h and the box length
+TEST_F(Setting, KernelSupportLongerThanTheBoxIsNamed)
+{
+  sph("sph/astro sentinel stop");
+  EXPECT_EQ(error_of(lmp, "run 1"), "");    // support 1.8 in a box of 2
+  commands(lmp, {"set atom 3 d_h 1.5"});
+  const std::string message = error_of(lmp, "run 1");
+  EXPECT_NE(message.find("atom 3 has h = 1.5: its kernel support 3 is 1.5 times the periodic box "
+                         "length 2 in x"),
+            std::string::npos)
+      << message;
+}
+
+// the package searches its neighbours itself: LAMMPS' neighbor multi (with comm multi and a
+// density contrast of 1e8) gives the run of neighbor bin, to round-off
+TEST(NeighbourStyle, MultiGivesTheRunOfBin)
+{
+  std::map<int, double> x[2];
+  for (int multi : {0, 1}) {
+    auto lmp = open_lammps();
+    commands(lmp,
+             {"units lj", "atom_style atomic", "atom_modify map array",
+              "region box block 0 6 0 6 0 6", "create_box 1 box", "lattice sc 1.0",
+              "create_atoms 1 box", "lattice sc 1.0e8",
+              "region clump block 2.1 2.109 2.1 2.109 2.1 2.109 units box",
+              "create_atoms 1 region clump", "mass 1 1.0", "pair_style " + std::string(PAIR),
+              "pair_coeff * *", "fix gas all sph/astro", "fix hvar all sph/astro/h iterate",
+              "set group all d_h 1.0", "set group all d_u 1.0"});
+    if (multi)
+      commands(lmp,
+               {"neighbor 0.001 multi", "comm_modify mode multi",
+                "neigh_modify collection/interval 2 0.1 20"});
+    else
+      commands(lmp, {"neighbor 0.001 bin"});
+    commands(lmp, {"run 20"});
+    ASSERT_EQ(lmp->atom->natoms, 280);
+    x[multi] = per_atom(lmp, "x");
+  }
+  for (auto &[id, value] : x[0]) EXPECT_NEAR(x[1][id], value, 1e-12) << "atom " << id;
+}
+
+// fix sph/astro/h dhdt: particles held at the h cap (here hmax in an expansion) are counted in
+// the fix's vector and reported by the sentinel (sentinel stop: as an error)
+TEST_F(Setting, ParticlesAtTheDhdtCapAreCountedAndReported)
+{
+  for (bool stop : {false, true}) {
+    if (stop) {    // a fresh instance (the old one first: LAMMPS plugins are global)
+      lmp.reset();
+      SetUp();
+    }
+    sph(stop ? "sph/astro sentinel stop" : "sph/astro");
+    commands(lmp,
+             {"fix hvar all sph/astro/h dhdt hmax 0.92", "variable vx atom 2.0*(x-1.0)",
+              "variable vy atom 2.0*(y-1.0)", "variable vz atom 2.0*(z-1.0)",
+              "velocity all set v_vx v_vy v_vz", "thermo_style custom step f_hvar[4]"});
+    if (stop) {
+      const std::string message = error_of(lmp, "run 4");
+      EXPECT_NE(message.find("particles were held at the h cap of fix sph/astro/h dhdt (first: "
+                             "atom"),
+                std::string::npos)
+          << message;
+    } else {
+      commands(lmp, {"run 4"});    // (measured: 4 of 32 held at the cap at steps 1-9)
+      const double capped = *static_cast<double *>(
+          lammps_extract_fix(lmp.get(), "hvar", LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR, 3, 0));
+      EXPECT_GT(capped, 0.05 * 32) << "capped particles after the expansion";
+    }
   }
 }

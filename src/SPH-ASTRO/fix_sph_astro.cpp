@@ -340,6 +340,7 @@ void FixSPHAstro::setup(int /*vflag*/)
   user_dt_ = update->dt;
   sentinel_->start_run();
   sentinel_->check_velocities(groupbit, "at the start of the run");
+  sentinel_->check_speed_outlier(pair_, igroup);
   if (tend_ > 0.0 && current_time() >= tend_ * (1.0 - 1e-12)) {
     if (comm->me == 0)
       error->warning(FLERR, "fix sph/astro: time {} already at tend {}: the run stops at once",
@@ -393,6 +394,7 @@ void FixSPHAstro::initial_integrate(int /*vflag*/)
       next_individual_timestep();
     }
     steps_->kick_drift(hfix_ ? pair_->h_cap() : 0.0, evolve_u_);
+    if (hfix_) hfix_->count_capped();
     predicted_step_ = update->ntimestep;
     return;
   }
@@ -532,8 +534,7 @@ void FixSPHAstro::end_of_step()
     next_individual_timestep();
   else
     next_timestep(true);
-  const bool iterate = hfix_ && hfix_->mode() == FixSPHAstroH::Mode::ITERATE;
-  sentinel_->check(pair_, groupbit, adaptive_, iterate, [this]() {
+  sentinel_->check(pair_, hfix_, groupbit, adaptive_, [this]() {
     return steps_ ? steps_->shortest_step() : limits();
   });
 }

@@ -61,7 +61,8 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 
 FixSPHAstroH::FixSPHAstroH(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), state_(new SPHAstro::StateIndex())
+    Fix(lmp, narg, arg), drift_stats_(new SPHAstro::GradhStatistics()),
+    state_(new SPHAstro::StateIndex())
 {
   mode_ = Mode::ITERATE;
   hfact_ = 1.2;
@@ -126,6 +127,7 @@ FixSPHAstroH::FixSPHAstroH(LAMMPS *lmp, int narg, char **arg) :
 FixSPHAstroH::~FixSPHAstroH()
 {
   delete state_;
+  delete drift_stats_;
 }
 
 void *FixSPHAstroH::extract(const char *name, int &dim)
@@ -256,11 +258,34 @@ void FixSPHAstroH::advance_h(double dt)
     h[i] *= std::exp(dt_over_d * divv[i]);
     h[i] = MIN(h[i], pair_->h_cap());
   }
+  count_capped();
+}
+
+void FixSPHAstroH::count_capped()
+{
+  if (mode_ != Mode::DHDT) return;
+  const double *h = atom->dvector[state_->h];
+  const int *mask = atom->mask;
+  const double cap = pair_->h_cap();
+  *drift_stats_ = SPHAstro::GradhStatistics();
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    drift_stats_->particles++;
+    if (h[i] < cap) continue;
+    drift_stats_->capped++;
+    if (!drift_stats_->first_capped || atom->tag[i] < drift_stats_->first_capped)
+      drift_stats_->first_capped = atom->tag[i];
+  }
+}
+
+const SPHAstro::GradhStatistics &FixSPHAstroH::h_statistics() const
+{
+  return mode_ == Mode::ITERATE ? pair_->h_statistics() : *drift_stats_;
 }
 
 double FixSPHAstroH::compute_vector(int n)
 {
-  const SPHAstro::GradhStatistics &stats = pair_->h_statistics();
+  const SPHAstro::GradhStatistics &stats = h_statistics();
   if (n == 0) {
     double local[2] = {stats.iterations_sum, static_cast<double>(stats.particles)}, all[2];
     MPI_Allreduce(local, all, 2, MPI_DOUBLE, MPI_SUM, world);

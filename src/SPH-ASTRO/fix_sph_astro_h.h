@@ -18,7 +18,8 @@ FixStyle(sph/astro/h,FixSPHAstroH);
 
 namespace SPHAstro {
 struct StateIndex;
-}
+struct GradhStatistics;
+}    // namespace SPHAstro
 
 namespace LAMMPS_NS {
 
@@ -41,6 +42,10 @@ class FixSPHAstroH : public Fix {
   // h <- h exp(dt div v / d) for the group, capped; called by fix sph/astro in its drift once
   // the step's dt is final
   void advance_h(double dt);
+  // dhdt: count the particles of the group held at the h cap by the latest drift
+  void count_capped();
+  // the latest h iteration (iterate) or drift (dhdt: particles and capped only), this rank
+  const SPHAstro::GradhStatistics &h_statistics() const;
   double compute_vector(int) override;
 
   Mode mode() const { return mode_; }
@@ -64,6 +69,7 @@ class FixSPHAstroH : public Fix {
   double pending_cutoff_;                 // ghost cutoff for the next reneighbouring step (0: none)
   bigint ghost_widenings_;                // ghost cutoffs widened since the fix was defined
   void check_limits();
+  SPHAstro::GradhStatistics *drift_stats_;    // dhdt: the latest drift's capped particles
 
   SPHAstro::StateIndex *state_;
   class PairSPHAstro *pair_;

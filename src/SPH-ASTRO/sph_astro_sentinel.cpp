@@ -7,12 +7,14 @@
 
 #include "sph_astro_sentinel.h"
 
+#include "fix_sph_astro_h.h"
 #include "pair_sph_astro.h"
 #include "sph_astro_options.h"
 #include "sph_astro_passes.h"
 
 #include "atom.h"
 #include "comm.h"
+#include "domain.h"
 #include "error.h"
 #include "fix.h"
 #include "group.h"
@@ -60,7 +62,7 @@ bool StabilitySentinel::parse(const std::string &key, const char *val)
 
 void StabilitySentinel::start_run()
 {
-  dt_reported_ = h_reported_ = isolated_reported_ = fixed_reported_ = false;
+  dt_reported_ = h_reported_ = isolated_reported_ = fixed_reported_ = images_reported_ = false;
   dt_run_start_ = 0.0;
 }
 
@@ -70,11 +72,91 @@ void StabilitySentinel::check_velocities(int groupbit, const char *when)
   const int *mask = atom->mask;
   for (int i = 0; i < atom->nlocal; i++)
     if ((mask[i] & groupbit) &&
-        !(std::isfinite(v[i][0]) && std::isfinite(v[i][1]) && std::isfinite(v[i][2])))
+        !std::isfinite(v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]))
       error->one(FLERR,
                  "fix sph/astro: atom {} has velocity ({}, {}, {}) {} (step {}); velocities must "
-                 "be finite",
+                 "be finite, with a finite square (|v| < 1e154)",
                  atom->tag[i], v[i][0], v[i][1], v[i][2], when, update->ntimestep);
+}
+
+void StabilitySentinel::check_speed_outlier(PairSPHAstro *pair, int igroup)
+{
+  const int groupbit = group->bitmask[igroup];
+  if (action_ == Action::OFF || !(collapse_ > 0.0)) return;
+  double **v = atom->v;
+  const int *mask = atom->mask;
+  const double *cs = pair->fields().soundspeed;
+  // sum of log(|v| + c_s) over the particles that move or have a sound speed, their count,
+  // and the largest |v| (a hot spot's sound speed, as in a blast, is not reported)
+  double sums[2] = {0.0, 0.0}, sums_all[2], fastest = 0.0, fastest_all;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const double speed = sqrt(v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
+    fastest = MAX(fastest, speed);
+    if (!(speed + cs[i] > 0.0)) continue;
+    sums[0] += log(speed + cs[i]);
+    sums[1] += 1.0;
+  }
+  MPI_Allreduce(sums, sums_all, 2, MPI_DOUBLE, MPI_SUM, world);
+  MPI_Allreduce(&fastest, &fastest_all, 1, MPI_DOUBLE, MPI_MAX, world);
+  if (sums_all[1] < 2.0) return;
+  const double typical = exp(sums_all[0] / sums_all[1]);
+  if (!(fastest_all * collapse_ > typical)) return;
+  tagint id = MAXTAGINT, id_all;
+  double speed[2] = {0.0, 0.0}, speed_all[2];
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const double vi = sqrt(v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
+    if (vi == fastest_all && atom->tag[i] < id) {
+      id = atom->tag[i];
+      speed[0] = vi;
+      speed[1] = cs[i];
+    }
+  }
+  MPI_Allreduce(&id, &id_all, 1, MPI_LMP_TAGINT, MPI_MIN, world);
+  if (id != id_all) speed[0] = speed[1] = 0.0;
+  MPI_Allreduce(speed, speed_all, 2, MPI_DOUBLE, MPI_SUM, world);
+  report(fmt::format("fix sph/astro: atom {} moves at |v| = {:.6g} (sound speed {:.6g}), {:.3g} "
+                     "times the typical signal speed |v| + c_s of group {} ({:.6g}, geometric "
+                     "mean): it alone shortens the timestep by about that factor; check the "
+                     "velocities given by velocity, set or read_data; keyword collapse sets the "
+                     "factor (1/collapse)",
+                     id_all, speed_all[0], speed_all[1], fastest_all / typical,
+                     group->names[igroup], typical));
+}
+
+void StabilitySentinel::check_support(PairSPHAstro *pair, int groupbit)
+{
+  if (images_reported_) return;
+  int flag, cols;
+  const int index = atom->find_custom("h", flag, cols);
+  if (index < 0) return;
+  const double *h = atom->dvector[index];
+  const int *mask = atom->mask;
+  double hmax = 0.0, hmax_all;
+  for (int i = 0; i < atom->nlocal; i++)
+    if ((mask[i] & groupbit) && h[i] > hmax) hmax = h[i];
+  MPI_Allreduce(&hmax, &hmax_all, 1, MPI_DOUBLE, MPI_MAX, world);
+  const double support = pair->kernel_radius() * hmax_all;
+  const double lengths[3] = {domain->xprd, domain->yprd, domain->zprd};
+  int shortest = -1;
+  for (int d = 0; d < domain->dimension; d++)
+    if (domain->periodicity[d] && support > lengths[d] &&
+        (shortest < 0 || lengths[d] < lengths[shortest]))
+      shortest = d;
+  if (shortest < 0) return;
+  images_reported_ = true;
+  tagint id = MAXTAGINT, id_all;
+  for (int i = 0; i < atom->nlocal; i++)
+    if ((mask[i] & groupbit) && h[i] == hmax_all) id = MIN(id, atom->tag[i]);
+  MPI_Allreduce(&id, &id_all, 1, MPI_LMP_TAGINT, MPI_MIN, world);
+  report(fmt::format("fix sph/astro: at step {} atom {} has h = {:.6g}: its kernel support {:.6g} "
+                     "is {:.3g} times the periodic box length {:.6g} in {}, so it meets its own "
+                     "periodic images and each neighbour several times; the neighbour search and "
+                     "the force cost grow as that ratio to the power {}: lower h (set d_h, or "
+                     "hmax of fix sph/astro/h) or enlarge the box",
+                     update->ntimestep, id_all, hmax_all, support, support / lengths[shortest],
+                     lengths[shortest], "xyz"[shortest], domain -> dimension));
 }
 
 // other integrators or timestep setters on the same particles, fix deform with the adaptive
@@ -130,7 +212,7 @@ void StabilitySentinel::check_fixed_step(double dt, double stable,
                      dt, update->ntimestep, dt / stable, stable, cause()));
 }
 
-void StabilitySentinel::check(PairSPHAstro *pair, int groupbit, bool adaptive, bool iterate,
+void StabilitySentinel::check(PairSPHAstro *pair, FixSPHAstroH *hfix, int groupbit, bool adaptive,
                               const std::function<std::string()> &cause)
 {
   if (action_ == Action::OFF) return;
@@ -145,12 +227,13 @@ void StabilitySentinel::check(PairSPHAstro *pair, int groupbit, bool adaptive, b
         "state) that drives the criteria down; keyword collapse sets the share",
         update->dt, update->ntimestep, collapse_, dt_run_start_, why));
   }
-  const bool check_h = !h_reported_ && iterate;
+  check_support(pair, groupbit);
+  const bool check_h = !h_reported_ && hfix;
   // particles alone in their kernel support feel no pressure (the counts of the latest
   // density pass; density continuity has none without a pass of its own)
   const bool check_isolated = !isolated_reported_ && !pair->options().density_continuity;
   if (!check_h && !check_isolated) return;
-  const GradhStatistics &st = pair->h_statistics();
+  const GradhStatistics &st = hfix ? hfix->h_statistics() : pair->h_statistics();
   const tagint none = MAXTAGINT;
   tagint first[3] = {st.first_failure ? st.first_failure : none,
                      st.first_capped ? st.first_capped : none, none},
@@ -179,12 +262,19 @@ void StabilitySentinel::check(PairSPHAstro *pair, int groupbit, bool adaptive, b
   };
   if (h_bad) {
     h_reported_ = true;
-    report(fmt::format(
-        "fix sph/astro: at step {} the h iteration of {:.0f} of {:.0f} particles did not "
-        "converge (first: {}) and {:.0f} were held at the h cap (first: {}); their h does not "
-        "follow rho, so their forces are not the grad-h forces: raise fix sph/astro/h maxiter, "
-        "margin or hmax, or start from a better h; keyword hshare sets the share",
-        update->ntimestep, all[0], all[2], name(first_all[0]), all[1], name(first_all[1])));
+    if (hfix->mode() == FixSPHAstroH::Mode::ITERATE)
+      report(fmt::format(
+          "fix sph/astro: at step {} the h iteration of {:.0f} of {:.0f} particles did not "
+          "converge (first: {}) and {:.0f} were held at the h cap (first: {}); their h does not "
+          "follow rho, so their forces are not the grad-h forces: raise fix sph/astro/h "
+          "maxiter, margin or hmax, or start from a better h; keyword hshare sets the share",
+          update->ntimestep, all[0], all[2], name(first_all[0]), all[1], name(first_all[1])));
+    else
+      report(fmt::format(
+          "fix sph/astro: at step {} {:.0f} of {:.0f} particles were held at the h cap of fix "
+          "sph/astro/h dhdt (first: {}); their h stops following dh/dt = (h/d) div v: raise "
+          "fix sph/astro/h margin or hmax; keyword hshare sets the share",
+          update->ntimestep, all[1], all[2], name(first_all[1])));
   }
   if (isolated) {
     isolated_reported_ = true;

@@ -9,8 +9,9 @@
 // step it reports, once per run and with an atom ID, a timestep fallen below collapse x the
 // run's first one, more than hshare of the particles of the latest h iteration not converged
 // or held at the h cap, and more than hshare of the particles without a neighbour inside
-// their kernel support; as a warning or, with sentinel stop, an error. It also stops a run at
-// a velocity that is not finite.
+// their kernel support, a kernel support longer than a periodic box length, and a particle
+// whose speed alone sets the timestep; as a warning or, with sentinel stop, an error. It also
+// stops a run at a velocity that is not finite.
 
 #ifndef LMP_SPH_ASTRO_SENTINEL_H
 #define LMP_SPH_ASTRO_SENTINEL_H
@@ -22,6 +23,7 @@
 
 namespace LAMMPS_NS {
 class Fix;
+class FixSPHAstroH;
 class PairSPHAstro;
 }    // namespace LAMMPS_NS
 
@@ -34,12 +36,16 @@ class StabilitySentinel : protected LAMMPS_NS::Pointers {
   bool parse(const std::string &key, const char *val);
   // a run begins: each report once again
   void start_run();
-  // the owned atoms of groupbit: the first whose velocity is not finite stops the run
+  // the owned atoms of groupbit: the first whose velocity (or its square) is not finite stops
+  // the run
   void check_velocities(int groupbit, const char *when);
+  // after the setup forces: a particle whose speed |v| exceeds 1/collapse times the group's
+  // typical signal speed |v| + c_s (geometric mean) sets the timestep alone; reported with its ID
+  void check_speed_outlier(LAMMPS_NS::PairSPHAstro *pair, int igroup);
   // after a step: adaptive, the timestep is the fix's (collapse checked); cause: what limits
-  // it (called only for a report); iterate: the pair's h statistics belong to an h iteration
-  void check(LAMMPS_NS::PairSPHAstro *pair, int groupbit, bool adaptive, bool iterate,
-             const std::function<std::string()> &cause);
+  // it (called only for a report); hfix: variable h (null: fixed h)
+  void check(LAMMPS_NS::PairSPHAstro *pair, LAMMPS_NS::FixSPHAstroH *hfix, int groupbit,
+             bool adaptive, const std::function<std::string()> &cause);
   // at init: minimize, another integrator or fix dt/reset on the particles of self (fix
   // sph/astro), an empty group
   void check_setting(LAMMPS_NS::Fix *self, bool adaptive);
@@ -53,8 +59,10 @@ class StabilitySentinel : protected LAMMPS_NS::Pointers {
   double collapse_ = 1e-6, hshare_ = 0.05;
   double dt_run_start_ = 0.0;
   bool dt_reported_ = false, h_reported_ = false, isolated_reported_ = false;
-  bool fixed_reported_ = false;
+  bool fixed_reported_ = false, images_reported_ = false;
   void report(const std::string &message);
+  // a kernel support longer than a periodic box length (the particle meets its own images)
+  void check_support(LAMMPS_NS::PairSPHAstro *pair, int groupbit);
 };
 
 }    // namespace SPHAstro
