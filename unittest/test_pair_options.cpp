@@ -368,7 +368,7 @@ TEST(PressureEnergy, AdiabaticFlowKeepsItsEntropyOnlyWithDensityEnergy)
       if (form == "density-energy")
         EXPECT_LT(drift, 1e-5);
       else {
-        EXPECT_GT(drift, 1e-3);    // the property documented in doc/pair_sph_astro.rst
+        EXPECT_GT(drift, 1e-3);    // the property documented in doc/Howto_sph_astro_options.rst
         EXPECT_LT(drift, 5e-2);
       }
     }

@@ -22,7 +22,8 @@ CASES = ((2.0, 0.75, 0.1, 1.0), (1.0, 1.0, 0.4, 1.5), (3.0, 2.0, 1.0, 0.5), (0.5
 class LambdaTest(unittest.TestCase):
     def test_closed_form_n1(self):
         # n = 1: Gamma(7/2) = 15 sqrt(pi)/8, so lambda = 15 k M / (2 pi R^5); for the
-        # Monaghan & Price / seed-001 star M = 2, R = 0.75, k = 0.1: 2.01203
+        # star of examples/toystar (Monaghan & Price 2006, MNRAS 365, 991),
+        # M = 2, R = 0.75, k = 0.1: 2.01203
         for M, R, k in ((2.0, 0.75, 0.1), (1.0, 1.0, 1.0), (5.0, 0.3, 0.02)):
             with self.subTest(M=M, R=R, k=k):
                 self.assertAlmostEqual(toystar.toystar_lambda(M, R, k, 1.0),
