@@ -303,3 +303,4 @@ TEST_F(Setting, ParticlesAtTheDhdtCapAreCountedAndReported)
     }
   }
 }
+

@@ -73,11 +73,13 @@ FixSPHAstroH::FixSPHAstroH(LAMMPS *lmp, int narg, char **arg) :
   user_cutghost_ = 0.0;
   pending_cutoff_ = 0.0;
   ghost_widenings_ = 0;
+  for (double &c : carried_) c = 0.0;
   pair_ = nullptr;
   iterate_flag_ = 1;
 
   vector_flag = 1;
   size_vector = 8;
+  restart_global = 1;
   global_freq = 1;
   extvector = 0;
 
@@ -137,6 +139,8 @@ void *FixSPHAstroH::extract(const char *name, int &dim)
   if (strcmp(name, "tolerance") == 0) return &tolerance_;
   if (strcmp(name, "margin") == 0) return &margin_;
   if (strcmp(name, "hmax") == 0) return &h_max_;
+  if (strcmp(name, "carried_cap_start") == 0) return &carried_[0];
+  if (strcmp(name, "carried_cap") == 0) return &carried_[1];
   dim = 0;
   iterate_flag_ = mode_ == Mode::ITERATE ? 1 : 0;
   if (strcmp(name, "iterate") == 0) return &iterate_flag_;
@@ -171,6 +175,12 @@ void FixSPHAstroH::init()
   }
   user_cutghost_ = comm->cutghostuser;
   pending_cutoff_ = 0.0;
+  // continuing a run (pair sph/astro took its h cap): its ghost cutoff and pending widening
+  if (pair_->carried_cap_used()) {
+    comm->cutghostuser = MAX(comm->cutghostuser, carried_[2]);
+    pending_cutoff_ = carried_[3];
+    if (pending_cutoff_ > 0.0) next_reneighbor = update->ntimestep + 1;
+  }
 }
 
 // the setup's h iteration may take h near or past its lists' limit or the ghost cutoff
@@ -242,8 +252,32 @@ void FixSPHAstroH::pre_exchange()
 // the next run sets its ghost cutoff from its h; the user's comm_modify cutoff comes back
 void FixSPHAstroH::post_run()
 {
+  carry();
   comm->cutghostuser = user_cutghost_;
   pending_cutoff_ = 0.0;
+}
+
+void FixSPHAstroH::carry()
+{
+  if (!pair_) return;
+  carried_[0] = pair_->h_cap_start();
+  carried_[1] = pair_->h_cap();
+  carried_[2] = comm->cutghostuser > user_cutghost_ ? comm->cutghostuser : 0.0;
+  carried_[3] = pending_cutoff_;
+}
+
+void FixSPHAstroH::write_restart(FILE *fp)
+{
+  carry();
+  if (comm->me != 0) return;
+  int size = sizeof(carried_);
+  fwrite(&size, sizeof(int), 1, fp);
+  fwrite(carried_, sizeof(double), 4, fp);
+}
+
+void FixSPHAstroH::restart(char *buf)
+{
+  memcpy(carried_, buf, sizeof(carried_));
 }
 
 void FixSPHAstroH::advance_h(double dt)

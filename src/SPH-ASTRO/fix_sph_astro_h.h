@@ -39,6 +39,8 @@ class FixSPHAstroH : public Fix {
   void end_of_step() override;
   void pre_exchange() override;
   void post_run() override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
   // h <- h exp(dt div v / d) for the group, capped; called by fix sph/astro in its drift once
   // the step's dt is final
   void advance_h(double dt);
@@ -68,6 +70,10 @@ class FixSPHAstroH : public Fix {
   double user_cutghost_;                  // comm_modify cutoff when the run began
   double pending_cutoff_;                 // ghost cutoff for the next reneighbouring step (0: none)
   bigint ghost_widenings_;                // ghost cutoffs widened since the fix was defined
+  // what a run that continues this one keeps (restart file, or the next run): the pair's h cap
+  // at the start and now, the ghost cutoff this fix set (0: the user's), the pending one
+  double carried_[4];
+  void carry();
   void check_limits();
   SPHAstro::GradhStatistics *drift_stats_;    // dhdt: the latest drift's capped particles
 

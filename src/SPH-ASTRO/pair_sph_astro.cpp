@@ -186,6 +186,12 @@ void PairSPHAstro::init_style()
     error->all(FLERR, "pair_style sph/astro: no particle has h > 0 (set group all d_h VALUE)");
   // (an h above fix sph/astro/h hmax at the start keeps its value: the cap is not below it)
   h_cap_start_ = h_cap_ = MAX(hmax, MIN(scheme_->margin * hmax, scheme_->h_max));
+  // a run that continues one (restart file or the run before) keeps its h cap and ghost
+  // cutoff, so that it makes the same lists and h iterations; not when h outgrew the cap, the
+  // cap exceeds hmax, or it is more than CARRIED_CAP_MAX times what the run would take
+  carried_cap_used_ = scheme_->carried_cap >= hmax && scheme_->carried_cap <= scheme_->h_max &&
+      scheme_->carried_cap_start <= CARRIED_CAP_MAX * h_cap_start_;
+  if (carried_cap_used_) h_cap_start_ = h_cap_ = scheme_->carried_cap_start;
 
   const double support = o.kernel_radius() * hmax;
   if (neighbor->skin > support && comm->me == 0)

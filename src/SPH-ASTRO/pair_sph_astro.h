@@ -108,6 +108,10 @@ class PairSPHAstro : public Pair {
   // take, (ghost cutoff - skin) / kernel radius; a run starts with the ghost cutoff at
   // kernel radius x margin x the largest h + skin
   double h_cap() const { return h_cap_; }
+  double h_cap_start() const { return h_cap_start_; }
+  // the run keeps the h cap of the run it continues (fix sph/astro/h then keeps its ghost cutoff)
+  bool carried_cap_used() const { return carried_cap_used_; }
+  static constexpr double CARRIED_CAP_MAX = 4.0;
   double kernel_radius() const { return kernel_radius_; }
   static constexpr double LIST_GROWTH = 1.1;    // room for h to grow in the lists, variable h
   // fix sph/astro/h widens the ghost cutoff when LIST_REBUILD x the largest h exceeds h_cap
@@ -146,8 +150,9 @@ class PairSPHAstro : public Pair {
   double *alpha_force_;        // d_alpha_force: the alpha the forces use (fix_sph_astro_switch.cpp)
   double h_cap_start_;         // margin x the largest h at init (sets the ghost cutoff)
   double h_cap_;               // (ghost cutoff - skin) / kernel_radius_
-  int *sph_type_;              // per type: 1 if this pair style acts on it
-  double kernel_radius_;       // the support is kernel_radius_ h
+  bool carried_cap_used_ = false;
+  int *sph_type_;           // per type: 1 if this pair style acts on it
+  double kernel_radius_;    // the support is kernel_radius_ h
   bigint h_failures_;
   bigint counts_step_;    // step whose force evaluation the neighbour counts belong to
   bigint computed_step_;

@@ -46,6 +46,8 @@ Scheme read_scheme(LAMMPS *lmp, const PairOptions &options)
     scheme.max_iterations = static_cast<int>(fix_setting(hfix, "maxiter"));
     scheme.margin = fix_setting(hfix, "margin");
     scheme.h_max = fix_setting(hfix, "hmax");
+    scheme.carried_cap_start = fix_setting(hfix, "carried_cap_start");
+    scheme.carried_cap = fix_setting(hfix, "carried_cap");
   }
 
   auto switches = modify->get_fix_by_style("^sph/astro/switch$");

@@ -30,6 +30,9 @@ struct Scheme {
   HMode hmode = HMode::FIXED;
   double hfact = 1.2, tolerance = 1e-4, margin = 1.0;
   double h_max = INFINITY;    // fix sph/astro/h hmax: no h beyond it
+  // fix sph/astro/h: the h cap at the start of the run before and at its end (from its restart
+  // file or the run before in this instance; 0: none)
+  double carried_cap_start = 0.0, carried_cap = 0.0;
   int max_iterations = 30;
   bool entropy = false;       // fix sph/astro thermal entropy: P = A rho^gamma
   bool has_switch = false;    // fix sph/astro/switch: per-particle alpha (d_alpha)
