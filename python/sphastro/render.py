@@ -418,7 +418,8 @@ def add_parser(sub):
     g.add_argument("--column", default=None, choices=("x", "y", "z"),
                    help="integrate along this axis instead (3D)")
     r.add_argument("--res", type=int, default=256, help="pixels across (default 256)")
-    r.add_argument("--range", default=None, metavar="LO,HI", help="colour range")
+    r.add_argument("--range", default=None, metavar="LO,HI",
+                   help="colour range (--range=-1,2 when it starts with a minus sign)")
     r.add_argument("--log", action="store_true", help="colour by log10 of the map")
     r.add_argument("--vectors", action="store_true", help="overlay in-plane velocity arrows")
     r.add_argument("--extent", default=None, metavar="X0,X1,Y0,Y1",
