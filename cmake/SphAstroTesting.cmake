@@ -47,9 +47,9 @@ endfunction()
 
 # sph_astro_add_python_test(NAME <name> LABELS <label>... ARGS <argument>...)
 #
-# Runs ${SPH_ASTRO_PYTHON} <argument>... in the SPH-ASTRO environment (lmp, liblammps, LAMMPS'
-# Python module, the plugin path, tools/ on PYTHONPATH). The scripts take their output
-# directory as an argument: by convention ${SPH_ASTRO_TEST_OUTPUT}/<name>.
+# Runs ${SPH_ASTRO_PYTHON} <argument>... (build/venv's Python, with the sphastro package) in the
+# SPH-ASTRO environment (lmp, liblammps, LAMMPS' Python module, the plugin path). The scripts
+# take their output directory as an argument: by convention ${SPH_ASTRO_TEST_OUTPUT}/<name>.
 function(sph_astro_add_python_test)
   cmake_parse_arguments(PARSE_ARGV 0 T "" "NAME" "LABELS;ARGS")
   if(NOT T_NAME OR NOT T_LABELS OR NOT T_ARGS OR T_UNPARSED_ARGUMENTS)

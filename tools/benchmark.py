@@ -1,11 +1,11 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 # SPH-ASTRO - astrophysical SPH for LAMMPS. Distributed under the GNU General Public License
 # version 2 (the same licence as LAMMPS); see the LICENSE file.
 """SPH-ASTRO throughput and memory benchmark on a uniform periodic 3D box.
 
 Usage (from the repository root)::
 
-    /usr/bin/python3 tools/benchmark.py [--sizes 1e4,1e5,1e6] [--np 1] [--steps 20]
+    python3 tools/benchmark.py [--sizes 1e4,1e5,1e6] [--np 1] [--steps 20]
         [--outdir build/output/benchmark] [--var name=value ...]
 
 Runs examples/benchmark/in.benchmark once per size: N equal-mass particles on an fcc lattice
@@ -41,9 +41,9 @@ import subprocess
 import sys
 import time
 
+from sphastro.runs import provenance, lammps_environment
+
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir))
-sys.path.insert(0, os.path.join(ROOT, "tools"))
-from sphastro.runs import provenance, lammps_environment  # noqa: E402
 INPUT = os.path.join(ROOT, "examples", "benchmark", "in.benchmark")
 
 _LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", re.M)

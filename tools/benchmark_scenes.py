@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 # SPH-ASTRO - astrophysical SPH for LAMMPS. Distributed under the GNU General Public License
 # version 2 (the same licence as LAMMPS); see the LICENSE file.
 """Cost of SPH-ASTRO on a uniform box and on astrophysical scenes, side by side in one script
@@ -6,7 +6,7 @@
 
 Usage (from the repository root; ``source build/env.sh`` first or it is sourced for you)::
 
-    /usr/bin/python3 tools/benchmark_scenes.py [--np 2] [--rows box1e4,box1e5,...]
+    python3 tools/benchmark_scenes.py [--np 2] [--rows box1e4,box1e5,...]
         [--swift-bin PATH --swift-dir DIR] [--outdir build/output/benchmark_scenes]
 
 Rows (``--rows``, default all): ``box1e4``, ``box1e5``, ``box1e6`` (examples/benchmark, a
@@ -47,9 +47,9 @@ import subprocess
 import sys
 import time
 
+from sphastro.runs import lammps_environment, provenance
+
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir))
-sys.path.insert(0, os.path.join(ROOT, "tools"))
-from sphastro.runs import lammps_environment, provenance  # noqa: E402
 
 EX = os.path.join(ROOT, "examples")
 SCENES = {
@@ -125,7 +125,7 @@ def run_swift(name, n, outdir, swift_bin, swift_dir):
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
     ic = os.path.join(work, f"sedov_n{n}.hdf5")
-    subprocess.run(["/usr/bin/python3", os.path.join(swift_dir, "swift_sedov_ic.py"), str(n), ic],
+    subprocess.run([sys.executable, os.path.join(swift_dir, "swift_sedov_ic.py"), str(n), ic],
                    cwd=work, check=True, capture_output=True)
     cmd = ["/usr/bin/time", "-f", "SPHASTRO_RSS_KB %M", swift_bin, "--hydro", "--limiter",
            "--threads=2", "-P", f"InitialConditions:file_name:{ic}",

@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 # SPH-ASTRO - astrophysical SPH for LAMMPS
 # This software is distributed under the GNU General Public License version 2 (the same
 # licence as LAMMPS); see the LICENSE file.
@@ -6,7 +6,7 @@
 
 Usage (from the repository root, after ``source build/env.sh``)::
 
-    /usr/bin/python3 tools/compare_plugins.py OLD_PLUGIN_DIR NEW_PLUGIN_DIR [--repeat 3]
+    python3 tools/compare_plugins.py OLD_PLUGIN_DIR NEW_PLUGIN_DIR [--repeat 3]
         [--scenes benchmark,sod,sedov16,sod_signal_cd] [--np 1] [--outdir DIR]
 
 Each plugin directory holds a ``sphastroplugin.so`` (e.g. build/plugins of an older

@@ -1,12 +1,12 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 # SPH-ASTRO - astrophysical SPH for LAMMPS. Distributed under the GNU General Public License
 # version 2 (the same licence as LAMMPS); see the LICENSE file.
 """Accuracy versus cost: run an SPH-ASTRO test scene at several resolutions and plot its L1
 errors against the wall time of each run.
 
-Usage (from the repository root; needs numpy and matplotlib, i.e. Debian's /usr/bin/python3)::
+Usage (from the repository root; python3 of build/venv, on PATH after source build/env.sh)::
 
-    /usr/bin/python3 tools/error_vs_time.py sod [--resolutions 32,48,64,96,128] [--np 1]
+    python3 tools/error_vs_time.py sod [--resolutions 32,48,64,96,128] [--np 1]
         [--outdir build/output/error_vs_time] [--variants 'hfact=1.2;hfact=1.5']
 
 For each variant and resolution the scene's LAMMPS input is run once (``-log``/``-screen
@@ -57,12 +57,11 @@ from typing import Callable, Dict, Sequence, Tuple
 
 import numpy as np
 
-ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir))
-sys.path.insert(0, os.path.join(ROOT, "tools"))
+from sphastro.dump import read_last_frame
+from sphastro.runs import provenance, lammps_environment
+from sphastro.sod import sod_errors
 
-from sphastro.dump import read_last_frame  # noqa: E402
-from sphastro.runs import provenance, lammps_environment  # noqa: E402
-from sphastro.sod import sod_errors  # noqa: E402
+ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir))
 
 
 # --------------------------------------------------------------------------------------------
@@ -127,12 +126,8 @@ def analyse_sod(dump_path, run):
 def analyse_gresho(dump_path, run):
     """L1 of v_phi (and v_r, P, rho) of the Gresho-Chan vortex (examples/gresho/in.gresho) over
     r < 0.5 against the steady vortex; errors by examples/gresho/analyse.py."""
-    import importlib.util
-    path = os.path.join(ROOT, "examples", "gresho", "analyse.py")
-    spec = importlib.util.spec_from_file_location("gresho_analyse", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    err = module.gresho_errors(read_last_frame(dump_path), rmax=0.5)
+    from sphastro.gresho import gresho_errors
+    err = gresho_errors(read_last_frame(dump_path), rmax=0.5)
     return {"vphi": err["vphi"], "vr": err["vr"], "p": err["p"], "rho": err["rho"],
             "n_measured": err["n"]}
 
@@ -159,17 +154,12 @@ def analyse_toystar(dump_path, run):
     |relative error| of the fitted radius R_fit after the damped relaxation (DUMP.relaxed), their
     drift over the undamped continuation (DUMP), and from the log the largest kinetic energy
     of the continuation over the thermal energy and its |relative energy error|."""
-    import importlib.util
     from sphastro import toystar
-    path = os.path.join(ROOT, "examples", "toystar", "analyse.py")
-    spec = importlib.util.spec_from_file_location("toystar_analyse", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
     M, R = float(run.vars.get("M", 2.0)), float(run.vars.get("R", 0.75))
     k, n = float(run.vars.get("k", 0.1)), float(run.vars.get("npoly", 1.0))
     e1 = toystar.toystar_errors(read_last_frame(dump_path + ".relaxed"), M, R, k, n)
     e2 = toystar.toystar_errors(read_last_frame(dump_path), M, R, k, n)
-    log = module.parse_log(os.path.join(os.path.dirname(dump_path), "log.lammps"))
+    log = toystar.parse_log(os.path.join(os.path.dirname(dump_path), "log.lammps"))
     return {"l1": e1["l1_rel"], "rfit": abs(e1["err_r_fit"]), "rrms": abs(e1["err_r_rms"]),
             "rhoc": abs(e1["rho_c_sph"] / e1["rho_c"] - 1.0),
             "drift_l1": abs(e2["l1_rel"] - e1["l1_rel"]), "drift_r": abs(e2["r_fit"] - e1["r_fit"]) / R,
@@ -181,11 +171,7 @@ def analyse_evrard(dump_path, run):
     """Evrard collapse (examples/evrard/in.evrard): from the log, the largest |relative total
     energy error| over the run, the minimum of the potential energy W (maximum compression) and
     its time, and K, U, W at t = 0.8 and 3 (examples/evrard/analyse.py)."""
-    import importlib.util
-    path = os.path.join(ROOT, "examples", "evrard", "analyse.py")
-    spec = importlib.util.spec_from_file_location("evrard_analyse", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
+    from sphastro import evrard as module
     rows, _ = module.read_log(os.path.join(os.path.dirname(dump_path), "log.lammps"))
     K, U, W, ERR = "c_sum[8]", "c_sum[9]", "c_sum[10]", "c_sum[12]"
     rmin = min(rows, key=lambda r: r[W])
@@ -204,12 +190,8 @@ def analyse_noh(dump_path, run):
     post-shock value), L1(rho)/64 over r < 1.5 R_s, the wall heating (mean u over r < 0.25 R_s
     / 0.5), the smallest u, and from the log the |relative energy error| and the largest
     number of particles at the h cap (every step, else at the thermo lines)."""
-    import importlib.util
     import math
-    path = os.path.join(ROOT, "examples", "noh", "analyse.py")
-    spec = importlib.util.spec_from_file_location("noh_analyse", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
+    from sphastro import noh as module
     frame = read_last_frame(dump_path)
     t = frame.time if frame.time is not None else float(run.vars.get("tend", 0.6))
     res, _ = module.noh_measures(frame, t, u0=float(run.vars.get("u0", 1e-6)))

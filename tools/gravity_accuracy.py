@@ -11,7 +11,7 @@ kspace accuracies. The reference is compute sph/astro/gravity/direct (Ewald summ
 build/output/gravity_accuracy/: relative RMS force error |F - F_ref|_rms / |F_ref|_rms, relative
 potential-energy error, the solver's grid, and the wall time of one force evaluation (pair +
 kspace, the mean of `run STEPS` without integration, one MPI rank); PNG of error against time.
-Usage: /usr/bin/python3 tools/gravity_accuracy.py [--n 4000] [--steps 10] [--outdir DIR]
+Usage: python3 tools/gravity_accuracy.py [--n 4000] [--steps 10] [--outdir DIR]
 Needs LAMMPS' Python module and the plugin on LAMMPS_PLUGIN_PATH: source build/env.sh first.
 """
 import argparse

@@ -14,7 +14,8 @@ run_flagship=1
 [ "${1:-}" = "--no-run" ] && run_flagship=0
 
 packages=(cmake g++ make xz-utils dpkg-dev libopenmpi-dev openmpi-bin libfftw3-dev libgtest-dev
-          python3 python3-numpy python3-matplotlib)
+          python3 python3-numpy python3-matplotlib python3-h5py python3-venv python3-pip
+          python3-setuptools python3-wheel python3-pytest)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -30,6 +31,7 @@ cmake_args=()
 [ -n "${LAMMPS_SOURCE_DIR:-}" ] && cmake_args+=(-D "LAMMPS_SOURCE_DIR=$LAMMPS_SOURCE_DIR")
 cmake -S "$root/cmake" -B "$root/build" "${cmake_args[@]}" >/dev/null
 cmake --build "$root/build" -j "$(nproc)" >/dev/null
+"$root/tools/install_python.sh" "$root/build"
 echo "setup: built $root/build/plugins/sphastroplugin.so; 'source build/env.sh' puts lmp in reach"
 
 if [ $run_flagship = 1 ]; then

@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 # SPH-ASTRO - astrophysical SPH for LAMMPS. Distributed under the GNU General Public License
 # version 2 (the same licence as LAMMPS); see the LICENSE file.
 """Sedov errors of a SWIFT snapshot, measured as examples/sedov/analyse.py measures SPH-ASTRO's.
@@ -7,20 +7,18 @@ SWIFT writes HDF5 snapshots (PartType0/Coordinates, Velocities, Densities,
 InternalEnergies; Header/Time, BoxSize). The blast of its Sedov example sits at the box centre.
 Prints the shock radius offsets (binned density peak, half height), the peak density and the
 L1 errors of rho, v_r and P against the self-similar solution over r < 1.2 R_s
-(tools/sphastro/sedov.py), for E = 1, rho0 = 1, gamma 5/3 unless given.
+(python/sphastro/sedov.py), for E = 1, rho0 = 1, gamma 5/3 unless given.
 
-Usage: /usr/bin/python3 tools/swift_sedov_errors.py SNAPSHOT.hdf5 [--E 1] [--rho0 1]
+Usage: python3 tools/swift_sedov_errors.py SNAPSHOT.hdf5 [--E 1] [--rho0 1]
 Needs h5py (Debian: python3-h5py); SWIFT itself is never part of this repository.
 """
 
 import argparse
-import os
 import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__))))
-from sphastro import sedov  # noqa: E402
+from sphastro import sedov
 
 
 def main(argv=None):

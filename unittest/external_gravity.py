@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 # SPH-ASTRO - astrophysical SPH for LAMMPS. Distributed under the GNU General Public License
 # version 2 (the same licence as LAMMPS); see the LICENSE file.
 """External forces on SPH-ASTRO particles with LAMMPS' own fixes (doc/Howto_sph_astro_external_gravity.rst).
@@ -25,7 +25,7 @@ Isolated particles (no SPH neighbours: only the external forces act) under
    order: 3.3e-6, quartered with dt).
 
     source build/env.sh
-    /usr/bin/python3 unittest/external_gravity.py
+    python3 unittest/external_gravity.py
 
 Exit status 1 if a check fails.
 """

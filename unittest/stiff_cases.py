@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 # SPH-ASTRO - astrophysical SPH for LAMMPS. Distributed under the GNU General Public License
 # version 2 (the same licence as LAMMPS); see the LICENSE file.
 """Stiff and extreme cases: tiny LAMMPS runs that must end cleanly or stop with a clear error.
@@ -55,20 +55,13 @@ import subprocess
 import sys
 import time
 
-try:
-    import numpy as np
-except ImportError:                   # e.g. a pyenv/conda python3 first on PATH: use Debian's
-    if os.path.exists("/usr/bin/python3") and os.path.realpath(sys.executable) != \
-            os.path.realpath("/usr/bin/python3"):
-        os.execv("/usr/bin/python3", ["/usr/bin/python3"] + sys.argv)
-    raise
+import numpy as np
+
+from sphastro import sedov
+from sphastro.dump import read_last_frame
+from sphastro.runs import lammps_environment
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, os.pardir, "tools"))
-
-from sphastro import sedov  # noqa: E402
-from sphastro.dump import read_last_frame  # noqa: E402
-from sphastro.runs import lammps_environment  # noqa: E402
 
 GAMMA = 5.0 / 3.0
 SIGMA_M4_3D = 1.0 / math.pi          # M4 kernel: W(0, h) = sigma / h^3 in 3D

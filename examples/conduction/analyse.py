@@ -1,10 +1,10 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """Compare the spreading of a Gaussian u bump (examples/conduction/in.conduction) with the
 exact solution of the diffusion equation.
 
-Usage (needs numpy; Debian's /usr/bin/python3)::
+Usage (python3 of build/venv, on PATH after source build/env.sh)::
 
-    /usr/bin/python3 examples/conduction/analyse.py DUMPFILE [--kappa 1] [--rho 1]
+    python3 examples/conduction/analyse.py DUMPFILE [--kappa 1] [--rho 1]
         [--u0 1] [--log log.lammps] [--png out.png]
         [--assert 'growth=0.05,amp=0.05,energy=1e-12']
 
@@ -30,15 +30,12 @@ A0 sigma0 / sigma(t). Printed:
 """
 
 import argparse
-import os
 import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir,
-                                "tools"))
-
-from sphastro.dump import read_frames  # noqa: E402
+from sphastro import cli
+from sphastro.dump import read_frames
 
 
 def moments(frame, u0):
@@ -60,7 +57,8 @@ def main(argv=None):
                         help="density for D = kappa / rho (default: mean rho of the dump)")
     parser.add_argument("--u0", type=float, default=1.0, help="background u (default 1)")
     parser.add_argument("--png", default=None, help="write sigma^2(t) and amplitude to a PNG")
-    parser.add_argument("--assert", dest="bounds", default=None)
+    cli.add_assert_argument(parser, "fail (exit 1) unless every listed |figure| is within its "
+                            "bound: growth, amp, energy")
     args = parser.parse_args(argv)
 
     times, s2, amps, areas = [], [], [], []
@@ -111,19 +109,8 @@ def main(argv=None):
         fig.savefig(args.png, dpi=100)
 
     if args.bounds:
-        figures = {"growth": growth_err, "amp": amp_err, "energy": energy_err}
-        failed = []
-        for item in args.bounds.split(","):
-            name, bound = item.split("=")
-            if name not in figures:
-                sys.exit(f"analyse.py: unknown figure '{name}' in --assert; known: "
-                         f"{', '.join(figures)}")
-            if not abs(figures[name]) <= float(bound):
-                failed.append(f"{name} = {figures[name]:.4e} exceeds {bound}")
-        if failed:
-            print("ASSERTION FAILED: " + "; ".join(failed))
-            return 1
-        print("assertions passed: " + args.bounds)
+        figures = {"growth": abs(growth_err), "amp": abs(amp_err), "energy": abs(energy_err)}
+        return cli.assert_bounds(args.bounds, figures, error=parser.error)
     return 0
 
 

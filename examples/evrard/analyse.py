@@ -20,51 +20,20 @@ Usage: analyse.py LOG [--png FILE] [--assert maxerr=X]
 import argparse
 import sys
 
-
-def read_log(path):
-    rows = {}
-    wall = None
-    with open(path) as fh:
-        header = None
-        for line in fh:
-            words = line.split()
-            if words[:2] == ["Step", "Time"]:
-                header = words
-                continue
-            if header and words and words[0] == "Loop":
-                header = None
-                continue
-            if line.startswith("Total wall time:"):
-                h, m, s = words[-1].split(":")
-                wall = 3600 * int(h) + 60 * int(m) + int(s)
-            if header and len(words) == len(header):
-                try:
-                    vals = [float(w) for w in words]
-                except ValueError:
-                    continue
-                rows[int(vals[0])] = dict(zip(header, vals))
-    steps = sorted(rows)
-    if not steps:
-        sys.exit(f"analyse.py: no thermo rows in {path}")
-    return [rows[s] for s in steps], wall
-
-
-def at_time(rows, t, key):
-    for a, b in zip(rows, rows[1:]):
-        if a["Time"] <= t <= b["Time"]:
-            w = (t - a["Time"]) / (b["Time"] - a["Time"]) if b["Time"] > a["Time"] else 0.0
-            return a[key] + w * (b[key] - a[key])
-    return None
+from sphastro import cli
+from sphastro.evrard import at_time, read_log
 
 
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("log")
     p.add_argument("--png", help="write the energy curves to this PNG")
-    p.add_argument("--assert", dest="bounds", default="",
-                   help="comma-separated bounds, e.g. maxerr=2e-3: exit 1 when exceeded")
+    cli.add_assert_argument(p, "comma-separated bounds, e.g. maxerr=2e-3: exit 1 when exceeded")
     args = p.parse_args()
-    rows, wall = read_log(args.log)
+    try:
+        rows, wall = read_log(args.log)
+    except ValueError as exc:
+        sys.exit(f"analyse.py: {exc}")
     K, U, W, E, ERR = "c_sum[8]", "c_sum[9]", "c_sum[10]", "c_sum[11]", "c_sum[12]"
     r0 = rows[0]
     maxerr = max(abs(r[ERR]) for r in rows)
@@ -111,16 +80,9 @@ def main():
         fig.savefig(args.png, dpi=110)
         print(f"wrote {args.png}")
 
-    failed = False
-    for item in filter(None, args.bounds.split(",")):
-        name, value = item.split("=")
-        measured = {"maxerr": maxerr}[name]
-        if not measured <= float(value):
-            print(f"FAILED: {name} = {measured:.4g} > {value}")
-            failed = True
-        else:
-            print(f"ok: {name} = {measured:.4g} <= {value}")
-    return 1 if failed else 0
+    if args.bounds:
+        return cli.assert_bounds(args.bounds, {"maxerr": maxerr}, error=p.error)
+    return 0
 
 
 if __name__ == "__main__":

@@ -14,13 +14,12 @@ has the reference compute, the relative RMS difference from the direct sum.
 Usage: analyse.py DUMP [--n N] [--png FILE] [--assert key=bound,...]
 """
 import argparse
-import os
 import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
-from sphastro.dump import read_last_frame  # noqa: E402
+from sphastro import cli
+from sphastro.dump import read_last_frame
 
 
 def main():
@@ -28,8 +27,8 @@ def main():
     p.add_argument("dump")
     p.add_argument("--n", type=int, default=16, help="fcc cells across the diameter (as -var n)")
     p.add_argument("--png")
-    p.add_argument("--assert", dest="bounds", default="",
-                   help="e.g. l1a=0.02,rmsa=0.03,l1phi=0.01,ref=1e-4 (interior L1/RMS, reference)")
+    cli.add_assert_argument(p, "e.g. l1a=0.02,rmsa=0.03,l1phi=0.01,ref=1e-4 (interior L1/RMS, "
+                               "reference)")
     args = p.parse_args()
 
     c = read_last_frame(args.dump).columns
@@ -85,14 +84,11 @@ def main():
         fig.savefig(args.png, dpi=120)
         print(f"wrote {args.png}")
 
-    failed = False
-    for item in filter(None, args.bounds.split(",")):
-        key, bound = item.split("=")
-        value = results.get(key)
-        ok = value is not None and value <= float(bound)
-        failed |= not ok
-        print(f"assert {key} = {value} <= {bound}: {'ok' if ok else 'FAILED'}")
-    return 1 if failed else 0
+    if args.bounds:
+        missing = {} if "ref" in results else {
+            "ref": "needs the c_ref columns in the dump", "refphi": "needs the c_ref columns"}
+        return cli.assert_bounds(args.bounds, results, unavailable=missing, error=p.error)
+    return 0
 
 
 if __name__ == "__main__":

@@ -1,9 +1,9 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """Gresho-Chan vortex with constant artificial viscosity and with the Morris-Monaghan switch.
 
-Usage (from anywhere; needs numpy and matplotlib, i.e. Debian's /usr/bin/python3)::
+Usage (from anywhere; python3 of build/venv, on PATH after source build/env.sh)::
 
-    /usr/bin/python3 examples/gresho/run_compare.py [--n 64] [--np 1]
+    python3 examples/gresho/run_compare.py [--n 64] [--np 1]
         [--kernel m4] [--hfact 1.2] [--amin 0.1] [--ell 0.2] [--alpha 1.0] [--beta 2.0]
         [--every 0.1]
         [--outdir build/output/gresho] [--var NAME=VALUE ...]
@@ -30,14 +30,12 @@ import subprocess
 import sys
 import time
 
+from sphastro import cli, gresho
+from sphastro.dump import read_last_frame
+from sphastro.runs import lammps_environment
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, os.pardir, os.pardir))
-sys.path.insert(0, HERE)
-sys.path.insert(0, os.path.join(ROOT, "tools"))
-
-import analyse  # noqa: E402  (examples/gresho/analyse.py)
-from sphastro.dump import read_last_frame  # noqa: E402
-from sphastro.runs import lammps_environment  # noqa: E402
 
 _LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", re.M)
 
@@ -66,12 +64,12 @@ def run_variant(name, lmp_vars, args, env):
     frame = read_last_frame(dump)
     res = {"name": name, "wall": wall, "loop": sum(float(x[0]) for x in loops),
            "steps": sum(int(x[2]) for x in loops), "natoms": int(loops[-1][3]),
-           "frame": frame, "err": analyse.gresho_errors(frame, args.rmax),
-           "thermo": analyse.read_thermo(log), "dump": dump,
+           "frame": frame, "err": gresho.gresho_errors(frame, args.rmax),
+           "thermo": gresho.read_thermo(log), "dump": dump,
            "series": None}
-    res["log"] = analyse.log_figures(res["thermo"])
+    res["log"] = gresho.log_figures(res["thermo"])
     if args.every > 0 and os.path.exists(dump + ".series"):
-        res["series"] = analyse.series_errors(dump + ".series", args.rmax)
+        res["series"] = gresho.series_errors(dump + ".series", args.rmax)
     return res
 
 
@@ -146,26 +144,28 @@ def main(argv=None):
     print(f"wall time constant = {runs[0]['wall']:.2f} s, switch = {runs[1]['wall']:.2f} s")
 
     png = os.path.join(args.outdir, f"gresho_n{args.n}.png")
-    analyse.plot_profiles([r["frame"] for r in runs], labels, png, args.rmax,
+    gresho.plot_profiles([r["frame"] for r in runs], labels, png, args.rmax,
                           title=f"Gresho-Chan vortex, N = {runs[0]['natoms']}, {common['kernel']} "
                                 f"hfact {common['hfact']}, t = {args.tend:g}: "
                                 f"L1(switch)/L1(constant) = {ratio:.3f}")
     png_t = os.path.join(args.outdir, f"gresho_n{args.n}_time.png")
-    analyse.plot_log([r["thermo"] for r in runs], labels, png_t,
+    gresho.plot_log([r["thermo"] for r in runs], labels, png_t,
                      [r["series"] for r in runs] if args.every > 0 else None)
     print(f"profiles: {png}\ntime series: {png_t}")
 
     failed = []
     if args.assert_ratio is not None:
-        ok = ratio <= args.assert_ratio
-        print(f"check ratio = {ratio:.3f} <= {args.assert_ratio:g}: {'ok' if ok else 'FAILED'}")
-        if not ok:
-            failed.append("ratio")
+        failed += cli.check_bounds(f"ratio={args.assert_ratio!r}", {"ratio": ratio},
+                                   error=parser.error)
     for r, bounds in ((runs[0], args.assert_constant), (runs[1], args.assert_switch)):
         if bounds:
             print(f"{r['name']}:")
-            failed += analyse.check_bounds(r["err"], bounds)
-    return 1 if failed else 0
+            failed += [f"{r['name']} {name}" for name in cli.check_bounds(
+                bounds, gresho.assert_values(r["err"]), error=parser.error,
+                conditions={"particles in the measured region": r["err"]["n"] > 0})]
+    if args.assert_ratio is None and not args.assert_constant and not args.assert_switch:
+        return 0
+    return cli.report(failed)
 
 
 if __name__ == "__main__":

@@ -1,9 +1,9 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """Compare the last frame of an SPH-ASTRO Sedov-Taylor dump with the self-similar solution.
 
-Usage (from anywhere; needs numpy and matplotlib, i.e. Debian's /usr/bin/python3)::
+Usage (from anywhere; python3 of build/venv, on PATH after source build/env.sh)::
 
-    /usr/bin/python3 examples/sedov/analyse.py DUMPFILE [--log log.lammps] [--png out.png]
+    python3 examples/sedov/analyse.py DUMPFILE [--log log.lammps] [--png out.png]
         [--time T] [--E 1] [--rho0 1] [--gamma 1.6666667] [--pbg 1e-6] [--nbins 60]
         [--assert 'rshock=0.03,l1rho=0.1,peak=2.5,energy=1e-3']
 
@@ -11,7 +11,7 @@ The dump must be a LAMMPS text ``dump custom`` with the columns x, y, z, vx, vy,
 pressure and u (examples/sedov/in.sedov writes them); the blast is centred at the origin.
 The time defaults to the dump's ``ITEM: TIME``, else 0.1.  Printed, one figure a line:
 
-* the analytic shock radius R_s = xi0 (E t^2 / rho0)^(1/5) (tools/sphastro/sedov.py);
+* the analytic shock radius R_s = xi0 (E t^2 / rho0)^(1/5) (python/sphastro/sedov.py);
 * the shock radius from the SPH data, measured on the density averaged in ``nbins`` radial
   bins over r < 1.2 R_s in two ways, each with its relative error in %: ``r_peak``, the
   radius of the binned density maximum (refined by a parabola through three bins; the
@@ -40,13 +40,9 @@ import argparse
 import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir,
-                                "tools"))
-
-from sphastro import sedov  # noqa: E402
-from sphastro.dump import read_last_frame  # noqa: E402
-from sphastro.runs import check_bounds, parse_sph_log  # noqa: E402
-
+from sphastro import cli, sedov
+from sphastro.dump import read_last_frame
+from sphastro.runs import parse_sph_log
 
 
 def parse_log(path):
@@ -70,9 +66,8 @@ def main(argv=None):
     parser.add_argument("--nbins", type=int, default=60,
                         help="radial bins over r < 1.2 R_s for the shock measures (default 60)")
     parser.add_argument("--png", default=None, help="write rho, v_r, P profiles to this PNG")
-    parser.add_argument("--assert", dest="bounds", default=None,
-                        help="fail (exit 1) unless every figure is within its bound, e.g. "
-                             "rshock=0.03,l1rho=0.1,peak=2.5,energy=1e-3 (see the docstring)")
+    cli.add_assert_argument(parser, "fail (exit 1) unless every figure is within its bound, "
+                            "e.g. rshock=0.03,l1rho=0.1,peak=2.5,energy=1e-3 (see the docstring)")
     args = parser.parse_args(argv)
 
     frame = read_last_frame(args.dump)
@@ -121,11 +116,10 @@ def main(argv=None):
         if log is not None:
             values["energy"] = abs(log["energy"])
             values["capped"] = log["capped"]
-        failed = check_bounds(args.bounds, values, lower=("peak",), needs_log=("energy", "capped"),
-                              have_log=log is not None, all_finite=True,
-                              error=parser.error)
-        if failed:
-            return 1
+        return cli.assert_bounds(
+            args.bounds, values, lower=("peak",), error=parser.error,
+            unavailable={} if log is not None else {"energy": "needs --log",
+                                                    "capped": "needs --log"})
     return 0
 
 

@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 # SPH-ASTRO - astrophysical SPH for LAMMPS. Distributed under the GNU General Public License
 # version 2 (the same licence as LAMMPS); see the LICENSE file.
 """Sedov blast with global and with individual timesteps, side by side in one script.
@@ -11,9 +11,9 @@ density peak) and L1(rho) against the self-similar solution, the peak density, t
 error, the particle-updates, the LAMMPS steps and the wall time; then the individual runs'
 differences from the global one.
 
-Usage (from anywhere; needs numpy, i.e. Debian's /usr/bin/python3, and lmp on the PATH)::
+Usage (from anywhere; after source build/env.sh: build/venv's python3 and lmp on the PATH)::
 
-    /usr/bin/python3 examples/sedov/compare_steps.py [--n 16] [--np 1] [--outdir DIR]
+    python3 examples/sedov/compare_steps.py [--n 16] [--np 1] [--outdir DIR]
         [--assert 'l1=0.02,rshock=0.02,nolimiter=0.1,updates=0.30']
 
 ``--assert`` fails (exit 1) unless: the limited individual run's L1(rho) and shock radius
@@ -30,12 +30,11 @@ import subprocess
 import sys
 import time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, os.pardir, os.pardir, "tools"))
+from sphastro import cli, sedov
+from sphastro.dump import read_last_frame
+from sphastro.runs import parse_sph_log
 
-from sphastro import sedov  # noqa: E402
-from sphastro.dump import read_last_frame  # noqa: E402
-from sphastro.runs import parse_sph_log  # noqa: E402
+HERE = os.path.dirname(os.path.abspath(__file__))
 
 _UPDATES = re.compile(r"fix sph/astro steps individual: (\S+) particle-updates")
 VARIANTS = [("global", ["-var", "steps", "global"]),
@@ -70,7 +69,8 @@ def main(argv=None):
     parser.add_argument("--n", type=int, default=16, help="fcc cells per side (N = 4 n^3)")
     parser.add_argument("--np", type=int, default=1, help="MPI ranks")
     parser.add_argument("--outdir", default="sedov_compare_steps")
-    parser.add_argument("--assert", dest="bounds", default=None)
+    cli.add_assert_argument(parser, "fail (exit 1) unless l1, rshock, updates <= bound and "
+                            "nolimiter >= bound (see the docstring)")
     args = parser.parse_args(argv)
     rows = [run(name, args, extra) for name, extra in VARIANTS]
     print(f"Sedov, {rows[0]['N']} particles, {args.np} rank(s), t = 0.1")
@@ -90,16 +90,8 @@ def main(argv=None):
     print(f"without the limiter: shock radius {100 * nolim['rshock']:+.2f} % from the analytic "
           f"one, energy error {nolim['energy']:+.3e}")
     if args.bounds:
-        bounds = dict((k, float(v)) for k, v in (b.split("=") for b in args.bounds.split(",")))
-        failed = []
-        for key in ("l1", "rshock", "updates"):
-            if key in bounds and not diff[key] <= bounds[key]:
-                failed.append(f"{key} {diff[key]:.4g} > {bounds[key]}")
-        if "nolimiter" in bounds and not abs(nolim["rshock"]) > bounds["nolimiter"]:
-            failed.append(f"without the limiter the shock radius is off by only "
-                          f"{abs(nolim['rshock']):.4g} <= {bounds['nolimiter']}")
-        print("bounds: " + ("FAILED: " + "; ".join(failed) if failed else "passed"))
-        return 1 if failed else 0
+        return cli.assert_bounds(args.bounds, {**diff, "nolimiter": abs(nolim["rshock"])},
+                                 lower=("nolimiter",), error=parser.error)
     return 0
 
 

@@ -1,9 +1,9 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """Compare the last frame of an SPH-ASTRO Sod shock-tube dump with the exact solution.
 
-Usage (from anywhere; needs numpy and matplotlib, i.e. Debian's /usr/bin/python3)::
+Usage (from anywhere; python3 of build/venv, on PATH after source build/env.sh)::
 
-    /usr/bin/python3 examples/sod/analyse.py DUMPFILE [--gamma 1.6666667] [--time T]
+    python3 examples/sod/analyse.py DUMPFILE [--gamma 1.6666667] [--time T]
         [--png out.png] [--left rho,v,p] [--right rho,v,p] [--x0 0]
         [--xmin -0.5 --xmax 0.5] [--periodic]
 
@@ -19,11 +19,9 @@ import argparse
 import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir,
-                                "tools"))
-
-from sphastro.dump import read_last_frame  # noqa: E402
-from sphastro.sod import plot_profiles, sod_errors  # noqa: E402
+from sphastro import cli
+from sphastro.dump import read_last_frame
+from sphastro.sod import assert_values, plot_profiles, sod_errors
 
 
 def _state(text):
@@ -56,9 +54,8 @@ def main(argv=None):
     parser.add_argument("--periodic", action="store_true",
                         help="x is periodic over the dump's box, with the mirrored second "
                              "discontinuity at the box boundary")
-    parser.add_argument("--assert", dest="bounds", default=None,
-                        help="fail (exit 1) unless every listed L1 error is below its bound, "
-                             "e.g. rho=0.02,vx=0.03,P=0.02,u=0.03")
+    cli.add_assert_argument(parser, "fail (exit 1) unless every listed L1 error is below its "
+                            "bound, e.g. rho=0.02,vx=0.03,P=0.02,u=0.03")
     args = parser.parse_args(argv)
 
     frame = read_last_frame(args.dump)
@@ -77,22 +74,8 @@ def main(argv=None):
                       title=f"{os.path.basename(args.dump)}: step {frame.timestep}, t = {t:g}",
                       x_periodic=x_periodic)
     if args.bounds:
-        keys = {"rho": "rho", "vx": "vx", "P": "p", "p": "p", "u": "u"}
-        failed = []
-        for item in args.bounds.split(","):
-            name, bound = item.split("=")
-            if name not in keys:
-                parser.error(f"--assert: unknown field '{name}' (rho, vx, P, u)")
-            value = err[keys[name]]
-            status = "ok" if value <= float(bound) else "FAILED"
-            print(f"check L1({name}) = {value:.3e} <= {float(bound):.3e}: {status}")
-            if value > float(bound) or not value == value:
-                failed.append(name)
-        if err["n"] == 0:
-            print("check: no particle in the measured window: FAILED")
-            failed.append("n")
-        if failed:
-            return 1
+        return cli.assert_bounds(args.bounds, assert_values(err), error=parser.error,
+                                 conditions={"particles in the measured window": err["n"] > 0})
     return 0
 
 

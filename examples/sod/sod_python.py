@@ -7,7 +7,7 @@ d_rho, d_u, and compute sph/astro/atom for the pressure) and compares it with th
 Riemann solution.
 
     source build/env.sh
-    /usr/bin/python3 examples/sod/sod_python.py [--nx 64] [--assert rho=0.02,vx=0.04]
+    python3 examples/sod/sod_python.py [--nx 64] [--assert rho=0.02,vx=0.04]
 
 The plugin is found through LAMMPS_PLUGIN_PATH (set by build/env.sh) or given with --plugin.
 """
@@ -19,9 +19,10 @@ import time
 import numpy as np
 from lammps import LMP_STYLE_ATOM, LMP_TYPE_ARRAY, lammps
 
+from sphastro import cli
+from sphastro.sod import assert_values, sod_errors
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "..", "tools"))
-from sphastro.sod import sod_errors  # noqa: E402
 
 
 def main():
@@ -30,8 +31,8 @@ def main():
     parser.add_argument("--ny", type=int, default=6, help="lattice cells across y and z")
     parser.add_argument("--plugin", default=None, help="path of sphastroplugin.so to load")
     parser.add_argument("--outdir", default=".", help="where LAMMPS writes its dump")
-    parser.add_argument("--assert", dest="bounds", default=None,
-                        help="exit 1 unless each L1 error is below its bound: rho=..,vx=..,P=..,u=..")
+    cli.add_assert_argument(parser, "exit 1 unless each L1 error is below its bound: "
+                            "rho=..,vx=..,P=..,u=..")
     args = parser.parse_args()
 
     os.makedirs(args.outdir, exist_ok=True)
@@ -70,11 +71,7 @@ def main():
     if not np.isfinite([err['rho'], err['vx'], err['p'], err['u']]).all():
         return 1
     if args.bounds:
-        names = {"rho": "rho", "vx": "vx", "P": "p", "u": "u"}
-        failed = [k for k, b in (i.split("=") for i in args.bounds.split(","))
-                  if not err[names[k]] <= float(b)]
-        print("bounds " + args.bounds + (": FAILED " + ",".join(failed) if failed else ": ok"))
-        return 1 if failed else 0
+        return cli.assert_bounds(args.bounds, assert_values(err), error=parser.error)
     return 0
 
 

@@ -1,9 +1,9 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """Compare SPH-ASTRO with LAMMPS' SPH package on the particles of the 3d shock tube shock3d.lmp.
 
-Usage (from anywhere; needs numpy and matplotlib, i.e. Debian's /usr/bin/python3)::
+Usage (from anywhere; python3 of build/venv, on PATH after source build/env.sh)::
 
-    /usr/bin/python3 examples/sod_vs_lammps_sph/compare.py [--np 1] [--outdir DIR]
+    python3 examples/sod_vs_lammps_sph/compare.py [--np 1] [--outdir DIR]
         [--check | --check-accuracy] [--var NAME=VALUE ...]   (variables of in.sph_astro)
         [--run-lammps-sph] [--write-reference] [--reference FILE]
 
@@ -45,14 +45,13 @@ import subprocess
 import sys
 import time
 
+import numpy as np
+
+from sphastro import riemann
+from sphastro.dump import read_last_frame
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, os.pardir, os.pardir))
-sys.path.insert(0, os.path.join(ROOT, "tools"))
-
-import numpy as np  # noqa: E402
-
-from sphastro import riemann  # noqa: E402
-from sphastro.dump import read_last_frame  # noqa: E402
 
 GAMMA = 1.4
 LEFT = (1.0, 0.0, 1.0)
@@ -200,7 +199,7 @@ def write_reference(path, run, data, err, err0, np_ranks):
         "# LAMMPS' SPH package on in.lammps_sph (the physics of its",
         "# examples/PACKAGES/sph/shock_tube/shock3d.lmp) at t = 20: the stored reference of",
         "# compare.py. It changes only with LAMMPS' version or in.lammps_sph; rewrite it with",
-        "#   /usr/bin/python3 examples/sod_vs_lammps_sph/compare.py --write-reference",
+        "#   python3 examples/sod_vs_lammps_sph/compare.py --write-reference",
         "# (runs the SPH package, 25-50 s on one core). wall and loop are seconds on the",
         "# machine that wrote the file (load = its load average at the start); L1 = mean",
         f"# |q - q_exact| over the n particles with {WINDOW[0]:g} <= x <= {WINDOW[1]:g},"

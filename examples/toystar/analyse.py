@@ -1,14 +1,14 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """Compare an SPH-ASTRO toy star (examples/toystar/in.toystar) with its equilibrium profile.
 
-Usage (needs numpy and matplotlib, i.e. Debian's /usr/bin/python3)::
+Usage (python3 of build/venv, on PATH after source build/env.sh)::
 
-    /usr/bin/python3 examples/toystar/analyse.py dump.toystar.relaxed [dump.toystar]
+    python3 examples/toystar/analyse.py dump.toystar.relaxed [dump.toystar]
         [--log log.lammps] [--png toystar.png] [--M 2 --R 0.75 --k 0.1 --npoly 1]
         [--assert 'l1=0.05,rfit=0.02,drift_l1=0.01,ekin=1e-4']
 
 The first dump is the star at the end of the damped relaxation, the optional second one the
-same star after the undamped continuation. The reference is tools/sphastro/toystar.py:
+same star after the undamped continuation. The reference is python/sphastro/toystar.py:
 rho(r) = [lambda/(2k(1+n)) (R^2 - r^2)]^n, centred at the origin (the centre
 of the linear force). Printed, one figure a line, for each dump:
 
@@ -40,65 +40,11 @@ in.toystar prints, else the thermo lines of the continuation).
 
 import argparse
 import math
-import os
-import re
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir,
-                                "tools"))
-
-from sphastro import toystar  # noqa: E402
-from sphastro.dump import read_last_frame  # noqa: E402
-
-
-def parse_log(path):
-    """Figures of the relaxation (compute sum) and the free run (compute free) from the log."""
-    out = {"ekin_relaxed": math.nan, "eth_relaxed": math.nan, "ekin_free_max": math.nan,
-           "energy": math.nan, "energy_max": math.nan, "capped": math.nan, "steps": 0,
-           "loop_s": 0.0, "natoms": 0, "procs": 0, "ekin_free_end": math.nan,
-           "capped_steps": math.nan}
-    header = None
-    relax_rows, free_rows = [], []
-    with open(path, encoding="utf-8", errors="replace") as f:
-        for line in f:
-            words = line.split()
-            if words[:1] == ["Step"]:
-                header = words
-                continue
-            m = re.search(r"largest over all steps (\S+)", line)
-            if m and not line.startswith("print"):
-                out["capped_steps"] = max(out["capped_steps"], float(m.group(1))) \
-                    if math.isfinite(out["capped_steps"]) else float(m.group(1))
-            if line.startswith("Loop time of"):
-                header = None
-                w = line.split()
-                out["loop_s"] += float(w[3])
-                out["procs"] = int(w[5])
-                out["steps"] += int(w[8])
-                out["natoms"] = int(w[11])
-                continue
-            if header is None or len(words) != len(header):
-                continue
-            try:
-                row = dict(zip(header, (float(w) for w in words)))
-            except ValueError:
-                continue
-            (free_rows if "c_free[8]" in header else relax_rows).append(row)
-    if relax_rows:
-        out["ekin_relaxed"] = relax_rows[-1]["c_sum[8]"]
-        out["eth_relaxed"] = relax_rows[-1]["c_sum[9]"]
-        out["capped"] = relax_rows[-1]["f_hvar[4]"]
-    if free_rows:
-        out["ekin_free_max"] = max(r["c_free[8]"] for r in free_rows)
-        out["ekin_free_end"] = free_rows[-1]["c_free[8]"]
-        out["energy"] = free_rows[-1]["c_free[12]"]
-        out["energy_max"] = max(abs(r["c_free[12]"]) for r in free_rows)
-        out["capped"] = max(r["f_hvar[4]"] for r in free_rows)
-    # in.toystar prints the largest count over all steps of each phase (fix vector)
-    if math.isfinite(out["capped_steps"]):
-        out["capped"] = max(out["capped"], out["capped_steps"]) if math.isfinite(out["capped"]) \
-            else out["capped_steps"]
-    return out
+from sphastro import cli, toystar
+from sphastro.dump import read_last_frame
+from sphastro.toystar import parse_log
 
 
 def report(label, frame, args):
@@ -132,8 +78,7 @@ def main(argv=None):
     parser.add_argument("--npoly", type=float, default=1.0, help="polytropic index n")
     parser.add_argument("--fit-fraction", type=float, default=0.8,
                         help="fit R over the particles with r < this fraction of R (0.8)")
-    parser.add_argument("--assert", dest="bounds", default=None,
-                        help="fail (exit 1) unless every figure is within its bound")
+    cli.add_assert_argument(parser)
     args = parser.parse_args(argv)
 
     lam = toystar.toystar_lambda(args.M, args.R, args.k, args.npoly)
@@ -175,21 +120,7 @@ def main(argv=None):
         print(f"plot: {args.png}")
 
     if args.bounds:
-        failed = []
-        for item in args.bounds.split(","):
-            if not item.strip():
-                continue
-            name, bound = (s.strip() for s in item.split("="))
-            if name not in values:
-                parser.error(f"--assert: unknown or unavailable figure '{name}' "
-                             f"(available: {', '.join(sorted(values))})")
-            value = values[name]
-            ok = value <= float(bound) and value == value      # nan fails
-            print(f"check {name} = {value:.4g} <= {float(bound):.4g}: {'ok' if ok else 'FAILED'}")
-            if not ok:
-                failed.append(name)
-        if failed:
-            return 1
+        return cli.assert_bounds(args.bounds, values, error=parser.error)
     return 0
 
 

@@ -1,9 +1,9 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """Toy star (Monaghan & Price 2004, 2006) set up, run and analysed from Python through LAMMPS'
 Python module.
 
 The same scene as examples/toystar/in.toystar, written as LAMMPS commands issued from
-Python: lambda comes from the Python reference (tools/sphastro/toystar.py) instead of the
+Python: lambda comes from the Python reference (python/sphastro/toystar.py) instead of the
 input's own formula, and the state is read straight from LAMMPS' memory (numpy views of x, v
 and the per-atom SPH state d_rho) after the damped relaxation and after the undamped
 continuation. As in the input, fix sph/astro/h widens the ghost cutoff within a run when the
@@ -11,7 +11,7 @@ largest h grows; the particles at the h cap and the kinetic energy of the contin
 sampled at every step (fix vector).
 
     source build/env.sh
-    /usr/bin/python3 examples/toystar/toystar_python.py [--n 8] [--npoly 1] [--png toystar_py.png]
+    python3 examples/toystar/toystar_python.py [--n 8] [--npoly 1] [--png toystar_py.png]
         [--assert 'l1=0.025,rfit=0.014,drift_l1=1e-3,drift_r=2e-3,ekin=1e-4,energy=2e-4']
 
 ``--assert`` bounds (upper bounds; exit 1 if one fails): ``l1`` (L1(rho)/rho_c of the relaxed
@@ -31,9 +31,8 @@ import time
 import numpy as np
 from lammps import LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR, lammps
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "..", "tools"))
-from sphastro import toystar  # noqa: E402
+from sphastro import cli, toystar
+
 
 
 def state(lmp):
@@ -66,7 +65,7 @@ def main():
     parser.add_argument("--plugin", default=None, help="path of sphastroplugin.so to load")
     parser.add_argument("--outdir", default=".", help="where LAMMPS writes its log")
     parser.add_argument("--png", default=None, help="plot rho(r) after both phases")
-    parser.add_argument("--assert", dest="bounds", default=None)
+    cli.add_assert_argument(parser)
     args = parser.parse_args()
 
     M, R, k, n = args.M, args.R, args.k, args.npoly
@@ -177,21 +176,13 @@ thermo_modify   norm no
                               (f"free, t = {t_free:.3g}", free)], args.png, M, R, k, n,
                              title=f"toy star from Python, {natoms} particles")
         print(f"plot: {args.png}")
-    if not all(np.isfinite(list(figures.values()))):
+    finite = bool(np.all(np.isfinite(list(figures.values()))))
+    if args.bounds:
+        return cli.assert_bounds(args.bounds, figures, error=parser.error,
+                                 conditions={"all figures finite": finite})
+    if not finite:
         print("non-finite figure")
         return 1
-    if args.bounds:
-        failed = []
-        for item in args.bounds.split(","):
-            name, bound = (s.strip() for s in item.split("="))
-            if name not in figures:
-                parser.error(f"--assert: unknown figure {name!r} ({', '.join(figures)})")
-            ok = figures[name] <= float(bound)
-            print(f"check {name} = {figures[name]:.4g} <= {float(bound):.4g}: "
-                  f"{'ok' if ok else 'FAILED'}")
-            if not ok:
-                failed.append(name)
-        return 1 if failed else 0
     return 0
 
 

@@ -8,34 +8,50 @@ import subprocess
 import sys
 import time
 
-ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir,
-                                     os.pardir))
+
+
+def repo_root(root=None):
+    """The SPH-ASTRO source tree: ``root`` if given, else $SPH_ASTRO_ROOT (set by build/env.sh);
+    exits with a message when neither names a directory with examples/."""
+    root = root or os.environ.get("SPH_ASTRO_ROOT")
+    if not root:
+        sys.exit("error: the SPH-ASTRO source tree is not known: pass it as an argument or "
+                 "set SPH_ASTRO_ROOT (source build/env.sh)")
+    if not os.path.isdir(os.path.join(root, "examples")):
+        sys.exit(f"error: {root} (SPH_ASTRO_ROOT) is not an SPH-ASTRO source tree "
+                 "(no examples/ in it)")
+    return os.path.abspath(root)
 
 
 def lammps_environment():
-    """os.environ, plus build/env.sh's settings ($SPH_ASTRO_BUILD or ./build) if ``lmp`` is
-    not on PATH yet; exits with a message when no ``lmp`` can be found."""
+    """os.environ, plus build/env.sh's settings (from $SPH_ASTRO_BUILD) if ``lmp`` is not on
+    PATH yet; exits with a message when no ``lmp`` can be found."""
     env = dict(os.environ)
     if shutil.which("lmp", path=env.get("PATH")):
         return env
-    env_sh = os.path.join(os.environ.get("SPH_ASTRO_BUILD", os.path.join(ROOT, "build")),
-                          "env.sh")
-    if os.path.exists(env_sh):
+    build = os.environ.get("SPH_ASTRO_BUILD")
+    env_sh = os.path.join(build, "env.sh") if build else None
+    if env_sh and os.path.exists(env_sh):
         out = subprocess.run(["bash", "-c", f'source "{env_sh}" >/dev/null && env -0'],
                              check=True, capture_output=True).stdout
         env = dict(item.split("=", 1) for item in out.decode().split("\0") if "=" in item)
     if not shutil.which("lmp", path=env.get("PATH")):
-        sys.exit("error: lmp not found; source build/env.sh (or run tools/setup.sh) first")
+        sys.exit("error: lmp not found; source build/env.sh (or run tools/setup.sh) first, or "
+                 "set SPH_ASTRO_BUILD to the build directory")
     return env
 
 
-def provenance(log_path):
-    """'git <commit>[ +local changes], plugin <path> (<mtime>)' for a table header."""
+def provenance(log_path, root=None):
+    """'git <commit>[ +local changes], plugin <path> (<mtime>)' for a table header; the commit
+    only when ``root`` (default $SPH_ASTRO_ROOT) is a git checkout."""
     parts = []
+    root = root or os.environ.get("SPH_ASTRO_ROOT")
     try:
-        head = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], check=True,
+        if not root:
+            raise OSError("no source tree")
+        head = subprocess.run(["git", "-C", root, "rev-parse", "--short", "HEAD"], check=True,
                               capture_output=True, text=True).stdout.strip()
-        dirty = subprocess.run(["git", "-C", ROOT, "status", "--porcelain", "--", "src",
+        dirty = subprocess.run(["git", "-C", root, "status", "--porcelain", "--", "src",
                                 "cmake"], capture_output=True, text=True).stdout.strip()
         parts.append(f"git {head}{' + local changes in src/cmake' if dirty else ''}")
     except (OSError, subprocess.CalledProcessError):
@@ -103,39 +119,3 @@ def parse_sph_log(path, loops="last"):
                    steps=sum(int(lp[2]) for lp in chosen), natoms=int(found[-1][3]),
                    runs=len(found))
     return out
-
-
-def check_bounds(spec, values, lower=(), needs_log=(), have_log=True, all_finite=True,
-                 error=None):
-    """The ``--assert`` checks of the scene analyses: ``spec`` is ``name=bound,...``; each
-    figure in ``values`` must be <= its bound, those named in ``lower`` >= it; nan (or
-    ``all_finite`` false) fails. Figures in ``needs_log`` need the LAMMPS log. ``error`` (e.g.
-    ``parser.error``) reports a malformed spec. Prints one line per check and returns the
-    names of the failed ones."""
-    def fail(message):
-        if error is None:
-            raise ValueError(message)
-        error(message)
-
-    failed = []
-    for item in spec.split(","):
-        if not item.strip():
-            continue
-        name, bound = item.split("=")
-        name = name.strip()
-        if name in needs_log and not have_log:
-            fail(f"--assert: '{name}' needs --log")
-        if name not in values:
-            fail(f"--assert: unknown figure '{name}' ({', '.join(sorted(values))})")
-        value, bound = values[name], float(bound)
-        if name in lower:
-            ok = value >= bound
-            text = f"check {name} = {value:.4g} >= {bound:.4g}"
-        else:
-            ok = value <= bound
-            text = f"check {name} = {value:.4g} <= {bound:.4g}"
-        ok = ok and value == value and all_finite          # nan fails
-        print(f"{text}: {'ok' if ok else 'FAILED'}")
-        if not ok:
-            failed.append(name)
-    return failed

@@ -1,26 +1,17 @@
-"""The shock-radius measures of examples/noh/analyse.py on a synthetic smeared shock."""
+"""The shock-radius measures of sphastro.noh (examples/noh/analyse.py) on a synthetic smeared
+shock."""
 
-import importlib.util
 import math
-import os
 import unittest
 
 import numpy as np
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-
-
-def load_analyse():
-    path = os.path.join(ROOT, "examples", "noh", "analyse.py")
-    spec = importlib.util.spec_from_file_location("noh_analyse", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+from sphastro import noh
 
 
 class ShockRadiusTest(unittest.TestCase):
     def setUp(self):
-        self.noh = load_analyse()
+        self.noh = noh
         # Noh at t = 0.6: 64 inside R_s = 0.2, (1 + t/r)^2 outside, smeared symmetrically
         # (error function of width w) and sampled at the centres of 0.01 wide bins
         self.t, self.rs, self.w = 0.6, 0.2, 0.006

@@ -121,6 +121,11 @@ def sod_errors(frame, gamma, t, left=(1.0, 0.0, 1.0), right=(0.125, 0.0, 0.1), x
     return errors
 
 
+def assert_values(err):
+    """The ``--assert`` figures of a :func:`sod_errors` result: rho, vx, P (or p), u."""
+    return {"rho": err["rho"], "vx": err["vx"], "P": err["p"], "p": err["p"], "u": err["u"]}
+
+
 def plot_profiles(frame, gamma, t, left, right, x0, png_path, xlim=None, title="",
                   x_periodic=None):
     """Write a 2x2 PNG of rho, vx, P and u versus x: particles as dots, exact solution as lines.

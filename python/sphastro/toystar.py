@@ -27,10 +27,11 @@ Radius measures of an SPH star (``toystar_errors``):
 """
 
 import math
+import re
 
 import numpy as np
 
-__all__ = ["toystar_lambda", "density", "central_density", "enclosed_mass",
+__all__ = ["parse_log", "toystar_lambda", "density", "central_density", "enclosed_mass",
            "mean_square_radius", "toystar_errors", "plot_profile"]
 
 
@@ -162,3 +163,54 @@ def plot_profile(frames, png, M, R, k, n, title=""):
     fig.tight_layout()
     fig.savefig(png, dpi=130)
     return png
+
+
+def parse_log(path):
+    """Figures of the relaxation (compute sum) and the free run (compute free) from the LAMMPS
+    log of examples/toystar/in.toystar."""
+    out = {"ekin_relaxed": math.nan, "eth_relaxed": math.nan, "ekin_free_max": math.nan,
+           "energy": math.nan, "energy_max": math.nan, "capped": math.nan, "steps": 0,
+           "loop_s": 0.0, "natoms": 0, "procs": 0, "ekin_free_end": math.nan,
+           "capped_steps": math.nan}
+    header = None
+    relax_rows, free_rows = [], []
+    with open(path, encoding="utf-8", errors="replace") as f:
+        for line in f:
+            words = line.split()
+            if words[:1] == ["Step"]:
+                header = words
+                continue
+            m = re.search(r"largest over all steps (\S+)", line)
+            if m and not line.startswith("print"):
+                out["capped_steps"] = max(out["capped_steps"], float(m.group(1))) \
+                    if math.isfinite(out["capped_steps"]) else float(m.group(1))
+            if line.startswith("Loop time of"):
+                header = None
+                w = line.split()
+                out["loop_s"] += float(w[3])
+                out["procs"] = int(w[5])
+                out["steps"] += int(w[8])
+                out["natoms"] = int(w[11])
+                continue
+            if header is None or len(words) != len(header):
+                continue
+            try:
+                row = dict(zip(header, (float(w) for w in words)))
+            except ValueError:
+                continue
+            (free_rows if "c_free[8]" in header else relax_rows).append(row)
+    if relax_rows:
+        out["ekin_relaxed"] = relax_rows[-1]["c_sum[8]"]
+        out["eth_relaxed"] = relax_rows[-1]["c_sum[9]"]
+        out["capped"] = relax_rows[-1]["f_hvar[4]"]
+    if free_rows:
+        out["ekin_free_max"] = max(r["c_free[8]"] for r in free_rows)
+        out["ekin_free_end"] = free_rows[-1]["c_free[8]"]
+        out["energy"] = free_rows[-1]["c_free[12]"]
+        out["energy_max"] = max(abs(r["c_free[12]"]) for r in free_rows)
+        out["capped"] = max(r["f_hvar[4]"] for r in free_rows)
+    # in.toystar prints the largest count over all steps of each phase (fix vector)
+    if math.isfinite(out["capped_steps"]):
+        out["capped"] = max(out["capped"], out["capped_steps"]) if math.isfinite(out["capped"]) \
+            else out["capped_steps"]
+    return out

@@ -2,20 +2,17 @@
 
 Run from the repository root with::
 
-    /usr/bin/python3 -m unittest discover -s tools/sphastro -p 'test_*.py'
+    build/venv/bin/python -m pytest python/tests
 """
 
 import math
 import os
-import sys
 import tempfile
 import unittest
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-
-from sphastro import dump, riemann, sod  # noqa: E402
+from sphastro import dump, riemann, sod
 
 # Toro, Riemann Solvers and Numerical Methods for Fluid Dynamics, 3rd ed.: the five
 # test problems (Table 4.1, with discontinuity positions and output times) and

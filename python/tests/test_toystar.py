@@ -1,20 +1,16 @@
-"""Tests of the toy-star reference (tools/sphastro/toystar.py).
+"""Tests of the toy-star reference (python/sphastro/toystar.py).
 
 Run from the repository root with::
 
-    /usr/bin/python3 -m unittest discover -s tools/sphastro -p 'test_*.py'
+    build/venv/bin/python -m pytest python/tests
 """
 
 import math
-import os
-import sys
 import unittest
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-
-from sphastro import toystar  # noqa: E402
+from sphastro import toystar
 
 CASES = ((2.0, 0.75, 0.1, 1.0), (1.0, 1.0, 0.4, 1.5), (3.0, 2.0, 1.0, 0.5), (0.5, 0.3, 0.05, 3.0))
 

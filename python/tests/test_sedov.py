@@ -1,20 +1,16 @@
-"""Tests of the Sedov-Taylor solution (tools/sphastro/sedov.py).
+"""Tests of the Sedov-Taylor solution (python/sphastro/sedov.py).
 
 Run from the repository root with::
 
-    /usr/bin/python3 -m unittest discover -s tools/sphastro -p 'test_*.py'
+    build/venv/bin/python -m pytest python/tests
 """
 
 import math
-import os
-import sys
 import unittest
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-
-from sphastro import sedov  # noqa: E402
+from sphastro import sedov
 
 GAMMAS = (1.1, 1.2, 1.4, 5.0 / 3.0, 2.0, 2.5, 3.0)
 

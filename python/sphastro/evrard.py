@@ -1,0 +1,42 @@
+"""The Evrard collapse (Evrard 1988, MNRAS 235, 911): the energies of an SPH-ASTRO run from its
+LAMMPS log (examples/evrard/in.evrard: thermo Step Time Dt c_sum[8..12] = kinetic K, thermal U,
+potential W, total E, (E - E0)/|E0|)."""
+
+
+def read_log(path):
+    """Thermo rows (dicts keyed by the column names; a row repeated at a run boundary kept
+    once) of the runs whose thermo starts with Step Time, and the total wall time in s."""
+    rows = {}
+    wall = None
+    with open(path) as fh:
+        header = None
+        for line in fh:
+            words = line.split()
+            if words[:2] == ["Step", "Time"]:
+                header = words
+                continue
+            if header and words and words[0] == "Loop":
+                header = None
+                continue
+            if line.startswith("Total wall time:"):
+                h, m, s = words[-1].split(":")
+                wall = 3600 * int(h) + 60 * int(m) + int(s)
+            if header and len(words) == len(header):
+                try:
+                    vals = [float(w) for w in words]
+                except ValueError:
+                    continue
+                rows[int(vals[0])] = dict(zip(header, vals))
+    steps = sorted(rows)
+    if not steps:
+        raise ValueError(f"{path}: no thermo rows with Step Time columns")
+    return [rows[s] for s in steps], wall
+
+
+def at_time(rows, t, key):
+    """``key`` at time ``t``, interpolated linearly between thermo rows (None outside)."""
+    for a, b in zip(rows, rows[1:]):
+        if a["Time"] <= t <= b["Time"]:
+            w = (t - a["Time"]) / (b["Time"] - a["Time"]) if b["Time"] > a["Time"] else 0.0
+            return a[key] + w * (b[key] - a[key])
+    return None
