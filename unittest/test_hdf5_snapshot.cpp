@@ -153,6 +153,29 @@ std::map<long, Particle> gather_state(const std::unique_ptr<LAMMPS_NS::LAMMPS> &
   return out;
 }
 
+// a per-atom vector of a compute on every rank, by atom ID (all ranks learn every value)
+std::map<long, double> gather_compute(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp, const char *id)
+{
+  auto *values =
+      static_cast<double *>(lammps_extract_compute(lmp.get(), id, LMP_STYLE_ATOM, LMP_TYPE_VECTOR));
+  const int nlocal = lmp->atom->nlocal;
+  std::vector<double> mine(values, values + nlocal);
+  std::vector<long> tags(lmp->atom->tag, lmp->atom->tag + nlocal);
+  int nprocs;
+  MPI_Comm_size(MPI_COMM_WORLD, &nprocs);
+  std::map<long, double> out;
+  for (int p = 0; p < nprocs; p++) {
+    int n = p == rank() ? nlocal : 0;
+    MPI_Bcast(&n, 1, MPI_INT, p, MPI_COMM_WORLD);
+    std::vector<double> vals = p == rank() ? mine : std::vector<double>(n);
+    std::vector<long> ids = p == rank() ? tags : std::vector<long>(n);
+    MPI_Bcast(vals.data(), n, MPI_DOUBLE, p, MPI_COMM_WORLD);
+    MPI_Bcast(ids.data(), n, MPI_LONG, p, MPI_COMM_WORLD);
+    for (int k = 0; k < n; k++) out[ids[k]] = vals[k];
+  }
+  return out;
+}
+
 // a jittered fcc box of 4^3 cells (256 particles) whose box does not start at 0
 void scene(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp, const std::string &snapshot)
 {
@@ -268,25 +291,7 @@ TEST(Snapshot, EveryDatasetMatchesTheLammpsState)
   const auto state = gather_state(lmp);
   ASSERT_EQ(state.size(), 256u);
   // the pressures of the last force evaluation, as compute sph/astro/atom gives them
-  std::map<long, double> pressure;
-  {
-    auto *values = static_cast<double *>(
-        lammps_extract_compute(lmp.get(), "atom", LMP_STYLE_ATOM, LMP_TYPE_VECTOR));
-    std::vector<double> mine;
-    for (int i = 0; i < lmp->atom->nlocal; i++) mine.push_back(values[i]);
-    std::vector<long> tags(lmp->atom->tag, lmp->atom->tag + lmp->atom->nlocal);
-    int nprocs;
-    MPI_Comm_size(MPI_COMM_WORLD, &nprocs);
-    for (int p = 0; p < nprocs; p++) {    // one rank at a time: all ranks learn every value
-      int n = p == rank() ? static_cast<int>(mine.size()) : 0;
-      MPI_Bcast(&n, 1, MPI_INT, p, MPI_COMM_WORLD);
-      std::vector<double> vals = p == rank() ? mine : std::vector<double>(n);
-      std::vector<long> ids = p == rank() ? tags : std::vector<long>(n);
-      MPI_Bcast(vals.data(), n, MPI_DOUBLE, p, MPI_COMM_WORLD);
-      MPI_Bcast(ids.data(), n, MPI_LONG, p, MPI_COMM_WORLD);
-      for (int k = 0; k < n; k++) pressure[ids[k]] = vals[k];
-    }
-  }
+  const auto pressure = gather_compute(lmp, "atom");
   if (rank() != 0) return;
   EXPECT_TRUE(file_exists(stem + "0.hdf5"));
   EXPECT_TRUE(file_exists(stem + "5.hdf5"));
@@ -314,6 +319,7 @@ TEST(Snapshot, EveryDatasetMatchesTheLammpsState)
   EXPECT_EQ(last.attr("PartType0/Densities", "U_L exponent")[0], -3.0);
   EXPECT_EQ(last.attr("PartType0/Densities", "U_M exponent")[0], 1.0);
   EXPECT_EQ(last.text("HydroScheme", "Kernel function"), "m4");
+  EXPECT_FALSE(last.has("PartType0/ViscosityParameters"));    // there is no fix sph/astro/switch
   for (const char *step : {"0", "5", "10"}) std::remove((stem + step + ".hdf5").c_str());
 }
 
@@ -365,6 +371,31 @@ TEST(Snapshot, RestartKeepsTheSchedule)
     for (const char *step : {"0", "4", "12"}) std::remove((stem + step + ".hdf5").c_str());
     std::remove(restart.c_str());
   }
+}
+
+// with fix sph/astro/switch: ViscosityParameters are the alpha of the last force evaluation
+TEST(Snapshot, ViscosityParameters)
+{
+  auto lmp = open_lammps();
+  scene(lmp, "fix av all sph/astro/switch morris-monaghan 0.1 1.0 0.2");
+  commands(lmp,
+           {"compute alpha all sph/astro/atom alpha",
+            "fix snap all sph/astro/snapshot 3 test_snapshot_alpha_*.hdf5", "run 3"});
+  const auto alpha = gather_compute(lmp, "alpha");
+  if (rank() != 0) return;
+  Snapshot snap("test_snapshot_alpha_3.hdf5");
+  const auto ids = snap.data("PartType0/ParticleIDs");
+  const auto a = snap.data("PartType0/ViscosityParameters");
+  ASSERT_EQ(a.size(), 256u);
+  ASSERT_EQ(ids.size(), 256u);
+  double lo = 1.0;
+  for (size_t k = 0; k < a.size(); k++) {
+    EXPECT_EQ(a[k], alpha.at(std::lround(ids[k])));
+    lo = std::min(lo, a[k]);
+  }
+  EXPECT_LT(lo, 1.0);    // the switch has moved alpha from alpha_max
+  std::remove("test_snapshot_alpha_0.hdf5");
+  std::remove("test_snapshot_alpha_3.hdf5");
 }
 
 // a 2d box: Dimension 2, three coordinates (z relative to zlo) as SWIFT writes them
