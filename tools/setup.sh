@@ -15,7 +15,7 @@ run_flagship=1
 
 packages=(cmake g++ make xz-utils dpkg-dev libopenmpi-dev openmpi-bin libfftw3-dev libgtest-dev
           python3 python3-numpy python3-matplotlib python3-h5py python3-venv python3-pip
-          python3-setuptools python3-wheel python3-pytest)
+          python3-setuptools python3-wheel python3-pytest libhdf5-dev python3-yt)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -17,6 +17,7 @@
 #include "compute_sph_astro_gravity_direct.h"
 #include "fix_sph_astro.h"
 #include "fix_sph_astro_h.h"
+#include "fix_sph_astro_snapshot.h"
 #include "fix_sph_astro_switch.h"
 #include "msm_sph_astro_gravity.h"
 #include "pair_sph_astro.h"
@@ -64,6 +65,11 @@ static Fix *fix_sph_astro_h_creator(LAMMPS *lmp, int narg, char **arg)
 static Fix *fix_sph_astro_switch_creator(LAMMPS *lmp, int narg, char **arg)
 {
   return new FixSPHAstroSwitch(lmp, narg, arg);
+}
+
+static Fix *fix_sph_astro_snapshot_creator(LAMMPS *lmp, int narg, char **arg)
+{
+  return new FixSPHAstroSnapshot(lmp, narg, arg);
 }
 
 static Compute *compute_sph_astro_atom_creator(LAMMPS *lmp, int narg, char **arg)
@@ -126,6 +132,11 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "sph/astro/switch";
   plugin.info = "SPH-ASTRO per-particle viscosity alpha: Morris-Monaghan or Cullen-Dehnen";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_sph_astro_switch_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.name = "sph/astro/snapshot";
+  plugin.info = "SPH-ASTRO HDF5 snapshots in the SWIFT/GADGET layout (yt, h5py) every N steps";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_sph_astro_snapshot_creator;
   (*register_plugin)(&plugin, lmp);
 
   plugin.style = "compute";
