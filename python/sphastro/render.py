@@ -152,7 +152,11 @@ def _read_hdf5(path, h_factor=None):
             box = np.column_stack([np.zeros(dim), size])
         time = float(np.ravel(header["Time"])[0]) if "Time" in header else None
         if h_factor is None:
-            h_factor = SWIFT_KERNEL_GAMMA.get(dim, 1.825742) / 2.0
+            # fix sph/astro/snapshot (Code group "SPH-ASTRO ...") stores the run's own h
+            code = f["Code"].attrs.get("Code", b"") if "Code" in f else b""
+            code = code.decode() if isinstance(code, bytes) else str(code)
+            h_factor = 1.0 if code.startswith("SPH-ASTRO") else \
+                SWIFT_KERNEL_GAMMA.get(dim, 1.825742) / 2.0
         fields = {}
         if "Velocities" in g:
             vel = np.asarray(g["Velocities"])
@@ -204,7 +208,8 @@ def read_particles(path, mass=None, hfact=1.2, h_factor=None):
     """:class:`Particles` of a LAMMPS text dump (last frame) or a SWIFT-layout HDF5 snapshot.
 
     Dumps: ``mass`` (a number) when the dump has no mass column, else m = rho (h/hfact)^d;
-    HDF5: ``h_factor`` scales SmoothingLengths to SPH-ASTRO's h (default SWIFT's gamma_K / 2)."""
+    HDF5: ``h_factor`` scales SmoothingLengths to SPH-ASTRO's h (default: 1 for files of fix
+    sph/astro/snapshot, SWIFT's gamma_K / 2 for others)."""
     if not os.path.exists(path):
         raise FileNotFoundError(f"{path}: no such file")
     if _is_hdf5(path):
@@ -436,7 +441,7 @@ def add_parser(sub):
                    help="h = hfact (m/rho)^(1/d), to infer masses (default 1.2)")
     r.add_argument("--h-factor", type=float, default=None,
                    help="scale the file's smoothing lengths to SPH-ASTRO's h (support 2h); "
-                        "HDF5 default: SWIFT's gamma_K/2 = 0.912871 (3D)")
+                        "HDF5 default: 1 for fix sph/astro/snapshot files, SWIFT's gamma_K/2 = 0.912871 (3D) for others")
     r.add_argument("--cmap", default="viridis", help="matplotlib colour map")
     r.add_argument("--title", default=None)
     r.set_defaults(func=_run)

@@ -165,6 +165,13 @@ class FilesTest(unittest.TestCase):
         self.assertEqual(q.time, 0.5)
         img, _ = render.slice_map(q, q.rho, "z", 1.08, 32, ((0.55, 1.55), (0.55, 1.55)))
         self.assertLess(np.abs(img - 1.0).max(), 1e-2)
+        # a file of fix sph/astro/snapshot holds the run's own h
+        with h5py.File(path, "a") as f:
+            f.create_group("Code").attrs["Code"] = np.bytes_("SPH-ASTRO (LAMMPS plugin)")
+            del f["PartType0/SmoothingLengths"]
+            f["PartType0/SmoothingLengths"] = np.full(n, 1.2 * A)
+        q = render.read_particles(path)
+        self.assertTrue(np.allclose(q.h, 1.2 * A))
 
 
 if __name__ == "__main__":
