@@ -326,13 +326,13 @@ SCENES: Dict[str, Scene] = {
               "linear 4.86; rate: d ln M/dt over [0.5, 1]",
         physics="switch=none;cond=1.0;switch=cd,cond=1.0",
         presets={"mcnally": Preset(
-            # the three dissipation variants at three resolutions, 2 MPI ranks; the input finds
-            # kh_setup.py through root (so the runs need no SPH_ASTRO_ROOT)
-            resolutions=(32, 64, 128), np=2, var=(f"root={ROOT}",),
+            # the three dissipation variants at three resolutions, 1 MPI rank (2 ranks on the
+            # shared 2-core machine ran 8x slower); the input finds kh_setup.py through root
+            resolutions=(32, 64, 128), np=1, var=(f"root={ROOT}",),
             variants="switch=none;cond=1.0;switch=cd,cond=1.0",
             reference_label="no peer code run", reference=(),
             notes="McNally et al. (2012) Kelvin-Helmholtz: classic viscosity, + artificial "
-                  "conductivity, Cullen-Dehnen switch + conductivity; 2 MPI ranks")}),
+                  "conductivity, Cullen-Dehnen switch + conductivity; 1 MPI rank")}),
     "noh": Scene(
         input="examples/noh/in.noh", res_var="n", out_var="out",
         default_res=(8, 12, 16), analyse=analyse_noh,
