@@ -14,8 +14,8 @@ v'.grad P0 term vanishes)::
     d v'/dt   = -i k U v' - p'_y / rho0
     d p'/dt   = -i k U p' - gamma P0 (i k u' + v'_y)
 
-(e.g. Chandrasekhar 1961, Hydrodynamic and Hydromagnetic Stability, ch. XI; the compressible
-form as in Berlok & Pfrommer 2019, MNRAS 485, 908, sec. 2). The seed v_y = 0.01 sin(4 pi x)
+(the linearised compressible Euler equations about a parallel shear flow, e.g. Chandrasekhar
+1961, Hydrodynamic and Hydromagnetic Stability; Berlok & Pfrommer 2019, MNRAS 485, 908). The seed v_y = 0.01 sin(4 pi x)
 is v' = -0.01 i, the other fields 0. The y direction is periodic on [0, 1] and is solved with
 Fourier derivatives (NY points), the time with the classical 4th-order Runge-Kutta scheme.
 

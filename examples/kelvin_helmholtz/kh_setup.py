@@ -8,8 +8,8 @@ follow rho(y) of their eqs. 1-4.
 Two hexagonal row lattices: n particles a row in the light gas (rho ~ 1, |y - 1/2| > 1/4)
 and n2 = round(sqrt(2) n) a row in the dense band (rho ~ 2), so that equal masses give
 nearly regular hexagons in both (spacing ratio 1/sqrt(2)). Inside each region the rows are
-placed in the mass coordinate m(y) = integral rho dy (a stretch along y, as in Price 2008,
-J. Comput. Phys. 227, 10040, for density ramps): row j of a region sits where the mass from
+placed in the mass coordinate m(y) = integral rho dy (the stretch mapping of Herant 1994,
+Mem. Soc. Astron. Ital. 65, 1013, along y): row j of a region sits where the mass from
 the region's edge is (j + 1/2) times the row mass, so the mean density follows rho(y),
 including the smooth ramps of width L = 0.025. The boundary between the lattices is put
 at y_b ~ 1/4 (and 1 - y_b) where the dense band holds exactly its rows' mass. Alternate rows
