@@ -202,6 +202,26 @@ def analyse_noh(dump_path, run):
             "energy": abs(log["energy"]), "capped": capped, "n_measured": res["n_window"]}
 
 
+def analyse_kelvin_helmholtz(dump_path, run):
+    """Kelvin-Helmholtz (examples/kelvin_helmholtz/in.kelvin_helmholtz): the mode amplitude M(t)
+    of McNally et al. (2012) from the log's thermo column v_M against the linear reference of
+    examples/kelvin_helmholtz/kh_linear.py over t in [0, 1] (examples/kelvin_helmholtz/analyse.py):
+    mean and largest |M / M_lin - 1|, the growth to t = 1 over the linear growth, M(1), M(2),
+    the growth rate fitted over [0.5, 1] and the largest |relative energy error|."""
+    import importlib.util
+    here = os.path.join(ROOT, "examples", "kelvin_helmholtz")
+    spec = importlib.util.spec_from_file_location("kh_analyse", os.path.join(here, "analyse.py"))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    runs_dir = os.path.dirname(os.path.dirname(dump_path))
+    ref = module.reference(os.path.join(runs_dir, "kh_linear_reference.txt"))
+    thermo = module.read_thermo(os.path.join(os.path.dirname(dump_path), "log.lammps"))
+    r = module.measures(thermo, ref, tcmp=1.0)
+    return {"mrel": r["l1"], "mmax": r["maxrel"], "mgrowth": r["growth"], "M1": r["M1"],
+            "M2": r["M2"], "rate": r["rate"], "energy": r["energy"],
+            "n_measured": len(thermo["Time"])}
+
+
 SCENES: Dict[str, Scene] = {
     "evrard": Scene(
         input="examples/evrard/in.evrard", res_var="n", out_var="out",
@@ -276,6 +296,25 @@ SCENES: Dict[str, Scene] = {
         notes="toy star, 3D, n = 1: N ~ 2.1 n^3; damped to t = 12, then undamped "
               "to t = 18; L1 over all particles; R_fit: radius of the fitted rho^(1/n) = "
               "A (R^2 - r^2); *_free: drift/largest values over the undamped continuation"),
+    "kelvin_helmholtz": Scene(
+        input="examples/kelvin_helmholtz/in.kelvin_helmholtz", res_var="n", out_var="out",
+        default_res=(32, 64, 128), analyse=analyse_kelvin_helmholtz,
+        errors=(("mrel", "L1_M/M_lin"), ("mmax", "max_M/M_lin"), ("mgrowth", "growth/lin"),
+                ("M1", "M(1)"), ("M2", "M(2)"), ("rate", "rate"), ("energy", "dE_max")),
+        plot=("mrel", "mgrowth"), fit="mrel",
+        notes="Kelvin-Helmholtz (McNally et al. 2012), 2D, to t = 2: N ~ 1.74 n^2; L1_M/M_lin: "
+              "mean |M/M_lin - 1| over t in [0, 1] against the linearised Euler solution "
+              "(kh_linear.py: M_lin(1) = 0.0486, rate 2.83); growth/lin: M(1)/M(0) over the "
+              "linear 4.86; rate: d ln M/dt over [0.5, 1]",
+        physics="switch=none;cond=1.0;switch=cd,cond=1.0",
+        presets={"mcnally": Preset(
+            # the three dissipation variants at three resolutions, 1 MPI rank (2 ranks on the
+            # shared 2-core machine ran 8x slower); the input finds kh_setup.py through root
+            resolutions=(32, 64, 128), np=1, var=(f"root={ROOT}",),
+            variants="switch=none;cond=1.0;switch=cd,cond=1.0",
+            reference_label="no peer code run", reference=(),
+            notes="McNally et al. (2012) Kelvin-Helmholtz: classic viscosity, + artificial "
+                  "conductivity, Cullen-Dehnen switch + conductivity; 1 MPI rank")}),
     "noh": Scene(
         input="examples/noh/in.noh", res_var="n", out_var="out",
         default_res=(8, 12, 16), analyse=analyse_noh,
@@ -473,7 +512,8 @@ def plot(scene_name, scene, runs_by_variant, png_path, nproc, preset=None):
     labels = {"rho": r"$L_1(\rho)$", "vx": r"$L_1(v_x)$", "p": r"$L_1(P)$", "u": r"$L_1(u)$",
               "vphi": r"$L_1(v_\phi)$", "vr": r"$L_1(v_r)$",
               "rshock": r"$|R_{peak} - R_s| / R_s$", "l1": r"$L_1(\rho) / \rho_c$",
-              "rfit": r"$|R_{fit} - R| / R$", "rhopost": r"$|\rho_{post} / 64 - 1|$"}
+              "rfit": r"$|R_{fit} - R| / R$", "rhopost": r"$|\rho_{post} / 64 - 1|$",
+              "mrel": r"mean $|M / M_{lin} - 1|$, $t \leq 1$", "mgrowth": r"$M$ growth / linear"}
     fig = Figure(figsize=(4.2 * len(scene.plot), 4.2))
     axes = fig.subplots(1, len(scene.plot), squeeze=False)[0]
     markers = "osD^v<>px"
