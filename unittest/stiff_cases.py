@@ -65,7 +65,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 
 GAMMA = 5.0 / 3.0
 SIGMA_M4_3D = 1.0 / math.pi          # M4 kernel: W(0, h) = sigma / h^3 in 3D
-TIMEOUT = 60                          # seconds per case (each is meant to take < 10 s)
+TIMEOUT = 900                         # a hang guard, not a speed bound (each case takes < 40 s alone)
 
 HEADER = """units           lj
 atom_style      atomic
@@ -554,7 +554,7 @@ def run_case(name, make, expect_run, root, env):
     wall = time.monotonic() - start
     log = parse_log(os.path.join(work, "log.lammps"))
     try:
-        check(rc is not None, f"timeout after {TIMEOUT} s")
+        check(rc is not None, f"no end after {TIMEOUT} s: the run hangs")
         if expect_run:
             check(rc == 0 or not log["errors"], f"lmp exit status {rc}")
         dump = os.path.join(work, "dump.final")
