@@ -13,7 +13,7 @@ Monaghan & Lattanzio 1985): W(r, h) = sigma_d / h^d w(r/h), w(q) = 1 - 3/2 q^2 +
 q < 1, (2 - q)^3 / 4 for 1 <= q < 2, 0 beyond (support 2h); sigma = 2/3, 10/(7 pi), 1/pi in
 1, 2, 3 dimensions.
 
-Input: LAMMPS text dumps (the last frame; columns x y [z], rho, h, optionally mass, vx vy vz,
+Input: LAMMPS text dumps (any frame, by default the last; columns x y [z], rho, h, optionally mass, vx vy vz,
 u, pressure: the names the scenes of examples/ give their c_sph[...] columns) and HDF5
 snapshots in SWIFT's layout (PartType0/Coordinates, Masses, Density, SmoothingLengths,
 Velocities, InternalEnergies; read with h5py).
@@ -170,10 +170,16 @@ def _read_hdf5(path, h_factor=None):
                          note=f"h = {h_factor:.6g} x SmoothingLengths")
 
 
-def _read_dump(path, mass=None, hfact=1.2, h_factor=None):
-    from .dump import read_last_frame
+def _read_dump(path, mass=None, hfact=1.2, h_factor=None, frame=-1):
+    from .dump import read_frames, read_last_frame
 
-    frame = read_last_frame(path)
+    if frame == -1:
+        frame = read_last_frame(path)
+    else:
+        frames = list(read_frames(path))
+        if not -len(frames) <= frame < len(frames):
+            raise ValueError(f"{path}: frame {frame} does not exist ({len(frames)} frames)")
+        frame = frames[frame]
     c = frame.columns
     axes = [a for a in ("x", "y", "z") if a in c]
     if axes[:2] != ["x", "y"]:
@@ -204,8 +210,9 @@ def _read_dump(path, mass=None, hfact=1.2, h_factor=None):
     return Particles(pos, m, cols["rho"], h, fields, frame.box[:dim], frame.time, note)
 
 
-def read_particles(path, mass=None, hfact=1.2, h_factor=None):
-    """:class:`Particles` of a LAMMPS text dump (last frame) or a SWIFT-layout HDF5 snapshot.
+def read_particles(path, mass=None, hfact=1.2, h_factor=None, frame=-1):
+    """:class:`Particles` of a LAMMPS text dump (``frame``: its index, -1 the last) or a
+    SWIFT-layout HDF5 snapshot.
 
     Dumps: ``mass`` (a number) when the dump has no mass column, else m = rho (h/hfact)^d;
     HDF5: ``h_factor`` scales SmoothingLengths to SPH-ASTRO's h (default: 1 for files of fix
@@ -214,7 +221,7 @@ def read_particles(path, mass=None, hfact=1.2, h_factor=None):
         raise FileNotFoundError(f"{path}: no such file")
     if _is_hdf5(path):
         return _read_hdf5(path, h_factor)
-    return _read_dump(path, mass, hfact, h_factor)
+    return _read_dump(path, mass, hfact, h_factor, frame)
 
 
 def _deposit(grid_shape, x0, dx, centres, h, weights, profile, offset=None,
@@ -341,7 +348,7 @@ def _parse_pair(text, what):
 
 def render(path, out, field="rho", slice_=None, column=None, res=256, vrange=None, log=False,
            vectors=False, extent=None, mass=None, hfact=1.2, h_factor=None, normalise=False,
-           cmap="viridis", title=None, periodic=False):
+           cmap="viridis", title=None, periodic=False, frame=-1):
     """Read ``path``, make a slice (``slice_`` = (axis, value); the default for 3D data is
     z = the middle of the box) or a column map (``column`` = axis) of ``field`` and write the
     PNG ``out`` (matplotlib). ``vectors``: in-plane velocity arrows (from vx, vy, vz).
@@ -349,7 +356,7 @@ def render(path, out, field="rho", slice_=None, column=None, res=256, vrange=Non
     Returns (image, extent, particles)."""
     from matplotlib.figure import Figure     # no pyplot: no GUI backend, no global state
 
-    p = read_particles(path, mass=mass, hfact=hfact, h_factor=h_factor)
+    p = read_particles(path, mass=mass, hfact=hfact, h_factor=h_factor, frame=frame)
     if periodic:
         p = periodic_images(p, None if column is None else
                             [a for a in range(3) if a != AXES[column]])
@@ -411,7 +418,7 @@ def add_parser(sub):
     r = sub.add_parser("render", help="SPH-kernel-weighted slice or column map of a dump or "
                        "snapshot to a PNG",
                        description="Slice (sum_j m_j/rho_j A_j W) or column (line-of-sight "
-                       "integral) map of a LAMMPS text dump (last frame) or a SWIFT-layout "
+                       "integral) map of a LAMMPS text dump (any frame) or a SWIFT-layout "
                        "HDF5 snapshot, with SPH-ASTRO's M4 kernel (Price 2007, PASA 24, 159).")
     r.add_argument("snapshot", help="LAMMPS text dump (columns x y [z] rho h ...) or HDF5")
     r.add_argument("--out", required=True, help="PNG to write")
@@ -442,6 +449,8 @@ def add_parser(sub):
     r.add_argument("--h-factor", type=float, default=None,
                    help="scale the file's smoothing lengths to SPH-ASTRO's h (support 2h); "
                         "HDF5 default: 1 for fix sph/astro/snapshot files, SWIFT's gamma_K/2 = 0.912871 (3D) for others")
+    r.add_argument("--frame", type=int, default=-1,
+                   help="dump frame by index (0 the first, -1 the last: default)")
     r.add_argument("--cmap", default="viridis", help="matplotlib colour map")
     r.add_argument("--title", default=None)
     r.set_defaults(func=_run)
@@ -461,7 +470,7 @@ def _run(args, parser):
         img, _, p = render(args.snapshot, args.out, args.field, slice_, args.column, args.res,
                            vrange, args.log, args.vectors, extent, args.mass, args.hfact,
                            args.h_factor, args.normalise, args.cmap, args.title,
-                           args.periodic)
+                           args.periodic, args.frame)
     except (ValueError, KeyError, FileNotFoundError) as exc:
         parser.error(str(exc).strip("'\""))
     print(f"{args.snapshot}: {len(p.pos)} particles{' with periodic images' if args.periodic else ''} ({p.dim}D{'; ' + p.note if p.note else ''}); "

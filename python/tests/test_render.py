@@ -134,6 +134,20 @@ class FilesTest(unittest.TestCase):
                                         "--column", "z", "--res", "24", "--vectors",
                                         "--mass", repr(A ** 3)]), 0)
 
+    def test_frames_of_a_dump_by_index(self):
+        first = os.path.join(self.tmp.name, "a")
+        second = os.path.join(self.tmp.name, "b")
+        write_dump(first, self.p.pos[:10], 1.0, 1.2 * A)
+        write_dump(second, self.p.pos[:12], 2.0, 1.2 * A)
+        dump = os.path.join(self.tmp.name, "dump.two")
+        with open(dump, "w") as f:
+            f.write(open(first).read() + open(second).read())
+        self.assertEqual(len(render.read_particles(dump).pos), 12)           # the last
+        self.assertEqual(len(render.read_particles(dump, frame=0).pos), 10)
+        self.assertEqual(render.read_particles(dump, frame=-2).rho[0], 1.0)
+        with self.assertRaises(ValueError):
+            render.read_particles(dump, frame=2)
+
     def test_unknown_field_is_a_usage_error(self):
         dump = os.path.join(self.tmp.name, "dump.lattice")
         write_dump(dump, self.p.pos[:10], 1.0, 1.2 * A)
