@@ -184,6 +184,9 @@ def _read_dump(path, mass=None, hfact=1.2, h_factor=None, frame=-1):
     axes = [a for a in ("x", "y", "z") if a in c]
     if axes[:2] != ["x", "y"]:
         raise ValueError(f"{path}: the dump needs the columns x, y (and z in 3D)")
+    # a 2d LAMMPS run keeps every z at 0 (dump columns x y z of a 2d run: 2D)
+    if "z" in axes and not np.any(np.asarray(c["z"], dtype=float)):
+        axes = ["x", "y"]
     dim = len(axes)
     alias = {"c_sph[1]": "rho", "c_sph[2]": "pressure", "c_sph[3]": "u", "c_sph[4]": "h"}
     cols = {alias.get(k, k): v for k, v in c.items()}

@@ -148,6 +148,16 @@ class FilesTest(unittest.TestCase):
         with self.assertRaises(ValueError):
             render.read_particles(dump, frame=2)
 
+    def test_dump_of_a_2d_run_is_2d(self):
+        g = np.arange(-0.5, 0.5 - 1e-9, 0.05)
+        x, y = np.meshgrid(g, g, indexing="ij")
+        pos = np.column_stack([x.ravel(), y.ravel(), 0.0 * x.ravel()])
+        dump = os.path.join(self.tmp.name, "dump.2d")
+        write_dump(dump, pos, 1.0, 1.2 * 0.05)
+        q = render.read_particles(dump)            # m = rho (h / 1.2)^2: the 2D constraint
+        self.assertEqual(q.dim, 2)
+        self.assertTrue(np.allclose(q.mass, 0.05 ** 2))
+
     def test_unknown_field_is_a_usage_error(self):
         dump = os.path.join(self.tmp.name, "dump.lattice")
         write_dump(dump, self.p.pos[:10], 1.0, 1.2 * A)
