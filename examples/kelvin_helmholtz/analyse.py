@@ -28,42 +28,12 @@ Usage::
 
 import argparse
 import os
-import re
 import sys
 
 import numpy as np
 
 import kh_linear  # (the script's folder is on Python's path when it runs)
-
-_HEADER = re.compile(r"^\s*Step\s+")
-
-
-def read_thermo(path):
-    """All thermo rows of a LAMMPS log: dict column name -> numpy array (runs concatenated)."""
-    data, names = {}, None
-    with open(path, encoding="utf-8", errors="replace") as f:
-        for line in f:
-            if _HEADER.match(line):
-                names = line.split()
-                for name in names:
-                    data.setdefault(name, [])
-                continue
-            if names is None:
-                continue
-            if line.startswith("Loop time"):
-                names = None
-                continue
-            parts = line.split()
-            if len(parts) != len(names):
-                continue
-            try:
-                values = [float(v) for v in parts]
-            except ValueError:
-                continue
-            for name, v in zip(names, values):
-                data[name].append(v)
-    return {k: np.array(v) for k, v in data.items() if v}
-
+from sphastro.thermo import read_thermo
 
 def reference(path=None):
     """(t, M_lin) on [0, 2] every 0.01 (ny 256: within 1e-4 of ny 1024 up to t = 2)."""

@@ -8,11 +8,11 @@ r < 0.2, 0.2 <= r < 0.4, r >= 0.4; rho = 1, v_r = 0.
 
 import math
 import os
-import re
 
 import numpy as np
 
 from .dump import read_frames
+from .thermo import read_thermo  # noqa: F401  (examples/gresho and error_vs_time use it here)
 
 P_OUT = 3.0 + 4.0 * math.log(2.0)
 
@@ -80,37 +80,7 @@ def binned(r, q, rmax=0.5, nbins=50):
 
 
 # --------------------------------------------------------------------------------------------
-# LAMMPS log
-
-_HEADER = re.compile(r"^\s*Step\s+")
-
-
-def read_thermo(path):
-    """All thermo rows of a LAMMPS log: dict column name -> numpy array (runs concatenated)."""
-    data, names = {}, None
-    with open(path, encoding="utf-8", errors="replace") as f:
-        for line in f:
-            if _HEADER.match(line):
-                names = line.split()
-                for name in names:
-                    data.setdefault(name, [])
-                continue
-            if names is None:
-                continue
-            if line.startswith("Loop time") or line.startswith("fix sph/astro"):
-                if line.startswith("Loop time"):
-                    names = None
-                continue
-            parts = line.split()
-            if len(parts) != len(names):
-                continue
-            try:
-                values = [float(v) for v in parts]
-            except ValueError:
-                continue
-            for name, v in zip(names, values):
-                data[name].append(v)
-    return {k: np.array(v) for k, v in data.items() if v}
+# LAMMPS log (read_thermo: sphastro.thermo)
 
 
 def log_figures(thermo):
