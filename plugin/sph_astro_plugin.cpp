@@ -11,10 +11,8 @@
    built into LAMMPS (-D PKG_SPH-ASTRO=on) does not use this file.
 ------------------------------------------------------------------------- */
 
-#include "error.h"
-#include "lammps.h"
 #include "lammpsplugin.h"
-#include "library.h"
+#include "sph_astro_plugin_sizes.h"
 #include "version.h"
 
 #include "compute_sph_astro_atom.h"
@@ -86,30 +84,9 @@ static Command *state_command_creator(LAMMPS *lmp)
   return new SPHAstroStateCommand(lmp);
 }
 
-/* the plugin's integer sizes (LAMMPS_SMALLBIG, _BIGBIG or _SMALLSMALL, taken from the
-   LAMMPS it was configured against) must be those of the LAMMPS that loads it: tagint,
-   imageint and bigint are in every per-atom array and in the layout of every class */
-
-static void check_integer_sizes(void *lmp)
-{
-  const int host_tagint = lammps_extract_setting(lmp, "tagint");
-  const int host_imageint = lammps_extract_setting(lmp, "imageint");
-  const int host_bigint = lammps_extract_setting(lmp, "bigint");
-  if ((host_tagint == (int) sizeof(tagint)) && (host_imageint == (int) sizeof(imageint)) &&
-      (host_bigint == (int) sizeof(bigint)))
-    return;
-  ((LAMMPS *) lmp)
-      ->error->all(FLERR,
-                   "SPH-ASTRO plugin: integer sizes (bytes) tagint {} imageint {} bigint {} "
-                   "differ from this LAMMPS' tagint {} imageint {} bigint {}: the plugin was "
-                   "built against another LAMMPS (LAMMPS_SIZES); rebuild it against this one",
-                   sizeof(tagint), sizeof(imageint), sizeof(bigint), host_tagint, host_imageint,
-                   host_bigint);
-}
-
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 {
-  check_integer_sizes(lmp);
+  sph_astro_check_integer_sizes(lmp);
 
   lammpsplugin_t plugin;
   auto register_plugin = (lammpsplugin_regfunc) regfunc;

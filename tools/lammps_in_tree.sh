@@ -135,8 +135,9 @@ case "${1:-}" in
     [ $# -ge 1 ] || die "usage: lammps_in_tree.sh --run CMD..."
     lmp=$(find_lmp)
     # the binary must be the in-tree one: SPH-ASTRO among its installed packages
-    "$lmp" -h | sed -n '/^Installed packages:/,/^List of individual style/p' |
-      grep -qw 'SPH-ASTRO' || die "$lmp does not list SPH-ASTRO among its installed packages"
+    help=$("$lmp" -h) || die "$lmp -h failed"
+    pkgs=$(sed -n '/^Installed packages:/,/^List of individual style/p' <<<"$help")
+    grep -qw 'SPH-ASTRO' <<<"$pkgs" || die "$lmp does not list SPH-ASTRO among its installed packages"
     unset LAMMPS_PLUGIN_PATH
     export PATH="${lmp%/lmp}:$PATH"
     echo "lammps_in_tree: lmp = $lmp (SPH-ASTRO built in, no plugin path)"

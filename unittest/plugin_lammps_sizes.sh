@@ -9,11 +9,15 @@
 #
 # In WORKDIR: a LAMMPS installation that declares LAMMPS_BIGBIG (a copy of the LAMMPSConfig
 # files of LAMMPS_DIR with LAMMPS_SMALLBIG replaced, the library, headers and lmp linked from
-# the real smallbig installation), the project configured against it (-D SPH_ASTRO_TESTS=off)
-# and its plugin built. Checks:
+# the real smallbig installation), the project configured against it (-O0: only the integer
+# sizes matter here), its plugin and the probe unittest/sizes_probe_plugin.cpp built. Checks:
 #   1. the configure reports bigbig and the plugin's compile flags carry -DLAMMPS_BIGBIG only;
-#   2. the real lmp loading that plugin stops with the plugin's integer-size error;
-#   3. the same lmp loads GOOD_PLUGIN (the plugin of the build under test) and runs.
+#   2. the real lmp does not take the bigbig plugin's styles: "plugin load" is refused (by the
+#      dynamic linker: the mangled names of LAMMPS functions with tagint arguments differ, or
+#      by the plugin's size check) and pair_style sph/astro is then an error;
+#   3. the probe (the plugin's size check alone, compiled bigbig) stops lmp with the check's
+#      error message;
+#   4. the same lmp loads GOOD_PLUGIN (the plugin of the build under test) and runs.
 set -euo pipefail
 [ $# = 4 ] || { sed -n '8p' "$0" >&2; exit 2; }
 work=$1 lammps_dir=$2 lammps_src=$3 good_plugin=$4
@@ -34,7 +38,7 @@ ln -s "$prefix/bin/lmp" "$fake/bin/lmp"
 
 echo "+ configure against $fake (declares LAMMPS_BIGBIG)"
 cmake -S "$root/cmake" -B "$work/build" -D "LAMMPS_DIR=$fake/lib/cmake/LAMMPS" \
-      -D "LAMMPS_SOURCE_DIR=$lammps_src" -D SPH_ASTRO_TESTS=off >"$work/configure.log" 2>&1 ||
+      -D "LAMMPS_SOURCE_DIR=$lammps_src" -D CMAKE_BUILD_TYPE=None -D CMAKE_CXX_FLAGS=-O0 >"$work/configure.log" 2>&1 ||
   { cat "$work/configure.log"; fail "configure failed"; }
 grep 'SPH-ASTRO: LAMMPS' "$work/configure.log"
 grep -q 'SPH-ASTRO: LAMMPS [0-9]* (bigbig)' "$work/configure.log" ||
@@ -44,22 +48,38 @@ grep -q -- '-DLAMMPS_BIGBIG' "$flags" || fail "the plugin is not compiled with -
 ! grep -q -- '-DLAMMPS_SMALLBIG' "$flags" || fail "the plugin is compiled with -DLAMMPS_SMALLBIG too"
 echo "ok: the plugin is compiled with -DLAMMPS_BIGBIG"
 
-echo "+ build the bigbig plugin"
-cmake --build "$work/build" --target sphastroplugin -j 2 >"$work/build.log" 2>&1 ||
+echo "+ build the bigbig plugin and probe"
+cmake --build "$work/build" --target sphastroplugin sizes_probe -j 2 >"$work/build.log" 2>&1 ||
   { tail -40 "$work/build.log"; fail "the plugin did not build with LAMMPS_BIGBIG"; }
 
 cd "$work"
-printf 'plugin load %s\n' "$work/build/plugins/sphastroplugin.so" >in.bigbig
-echo "+ lmp (smallbig) -in in.bigbig"
 unset LAMMPS_PLUGIN_PATH
+size_error='SPH-ASTRO plugin: integer sizes (bytes) tagint 8 imageint 8 bigint 8 differ from this LAMMPS. tagint 4 imageint 4 bigint 8'
+printf 'plugin load %s\npair_style sph/astro\n' "$work/build/plugins/sphastroplugin.so" >in.bigbig
+echo "+ lmp (smallbig) -in in.bigbig"
 if lmp -in in.bigbig -log none >bigbig.out 2>&1; then
   cat bigbig.out
-  fail "the smallbig lmp loaded the bigbig plugin without an error"
+  fail "the smallbig lmp took pair_style sph/astro from the bigbig plugin"
 fi
 cat bigbig.out
-grep -q 'SPH-ASTRO plugin: integer sizes (bytes) tagint 8 imageint 8 bigint 8 differ from this LAMMPS. tagint 4 imageint 4 bigint 8' bigbig.out ||
-  fail "lmp failed without the plugin's integer-size error"
-echo "ok: the bigbig plugin is refused with the integer-size error"
+if grep -q "$size_error" bigbig.out; then
+  echo "ok: the bigbig plugin is refused by its size check"
+elif grep -q 'Open of file .*sphastroplugin.so failed: .*undefined symbol' bigbig.out &&
+     grep -q "Unrecognized pair style 'sph/astro'" bigbig.out; then
+  echo "ok: the bigbig plugin is refused by the dynamic linker; pair_style sph/astro is unknown"
+else
+  fail "lmp failed, but neither with the size check's error nor with a refused plugin load"
+fi
+
+printf 'plugin load %s\n' "$work/build/unittest/sizes_probe.so" >in.probe
+echo "+ lmp (smallbig) -in in.probe"
+if lmp -in in.probe -log none >probe.out 2>&1; then
+  cat probe.out
+  fail "the smallbig lmp loaded the bigbig probe without an error"
+fi
+cat probe.out
+grep -q "$size_error" probe.out || fail "lmp failed without the size check's error"
+echo "ok: the size check stops lmp with its error"
 
 printf 'plugin load %s\nplugin list\n' "$good_plugin" >in.good
 lmp -in in.good -log none >good.out 2>&1 || { cat good.out; fail "the plugin under test did not load"; }
