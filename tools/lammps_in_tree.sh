@@ -30,6 +30,7 @@
 # reused incrementally, and bin-<hash>/lmp for each package-source hash built (the newest
 # three kept), hash = src/SPH-ASTRO, the CMake module and this script.
 set -euo pipefail
+shopt -s inherit_errexit
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/.." && pwd)
 cache=${SPH_ASTRO_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/sph-astro}
@@ -170,7 +171,11 @@ if [ ! -f "$dir/lammps/copied" ]; then
   touch "$dir/lammps/copied"
 fi
 register_package "$dir/lammps"
-echo "lammps_in_tree: building lmp with SPH-ASTRO in $dir/build (first build: about 10 minutes on 2 cores)" >&2
+if [ -f "$dir/build/CMakeCache.txt" ]; then
+  echo "lammps_in_tree: updating lmp with SPH-ASTRO in $dir/build (changed files only)" >&2
+else
+  echo "lammps_in_tree: building lmp with SPH-ASTRO in $dir/build (about 10 minutes on 2 cores)" >&2
+fi
 start=$(date +%s)
 cmake -S "$dir/lammps/cmake" -B "$dir/build" "${opts[@]}" >"$dir/configure.log" 2>&1 ||
   { tail -30 "$dir/configure.log" >&2; die "configure failed (log: $dir/configure.log)"; }
