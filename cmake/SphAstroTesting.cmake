@@ -70,7 +70,9 @@ endfunction()
 #                [ASSERT <bounds>]            appended as --assert <bounds>
 #                [FILES <file>...]            copied from the scene folder into the working
 #                                             directory before the run
-#                [LABELS <label>...])         further labels
+#                [LABELS <label>...]          further labels
+#                [LAUNCHER <command>...])     runs the driver through <command> (e.g. the
+#                                             in-tree lmp: tools/lammps_in_tree.sh --run)
 #
 # In ${SPH_ASTRO_TEST_OUTPUT}/<name> (created by the driver unittest/run_scene.sh):
 #   [mpirun -np n] lmp -in examples/<SCENE>/<INPUT> -log log.lammps -screen none -var ...
@@ -78,7 +80,7 @@ endfunction()
 # The test fails when either fails. Label scene, environment ${SPH_ASTRO_ENV}.
 function(add_scene_test)
   cmake_parse_arguments(PARSE_ARGV 0 T "" "NAME;SCENE;INPUT;RANKS;ANALYSE;ASSERT"
-                        "VARS;ANALYSE_ARGS;FILES;LABELS")
+                        "VARS;ANALYSE_ARGS;FILES;LABELS;LAUNCHER")
   if(NOT T_NAME OR NOT T_SCENE OR T_UNPARSED_ARGUMENTS)
     message(FATAL_ERROR "add_scene_test: NAME and SCENE needed (unknown: ${T_UNPARSED_ARGUMENTS})")
   endif()
@@ -103,7 +105,7 @@ function(add_scene_test)
   if(odd)
     message(FATAL_ERROR "add_scene_test(${T_NAME}): VARS takes name value pairs: ${T_VARS}")
   endif()
-  set(cmd ${SPH_ASTRO_ROOT}/unittest/run_scene.sh
+  set(cmd ${T_LAUNCHER} ${SPH_ASTRO_ROOT}/unittest/run_scene.sh
           ${SPH_ASTRO_TEST_OUTPUT}/${T_NAME} ${T_RANKS} ${scene_dir}/${T_INPUT})
   foreach(f ${T_FILES})
     list(APPEND cmd --copy ${scene_dir}/${f})

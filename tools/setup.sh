@@ -1,21 +1,24 @@
 #!/usr/bin/env bash
 # SPH-ASTRO - astrophysical SPH for LAMMPS. Distributed under the GNU General Public License
 # version 2 (the same licence as LAMMPS); see the LICENSE file.
-# SPH-ASTRO one-command setup: installs the Debian packages, obtains and builds LAMMPS
-# 4 Feb 2025 (cached in ~/.cache/sph-astro, reused when present), builds the plugin and
-# the tests in ./build, then runs the flagship Sod shock tube and prints its errors and
-# wall time.
+# SPH-ASTRO one-command setup: installs the Debian packages (tools/debian-packages.txt),
+# obtains, builds and installs LAMMPS 4 Feb 2025 (cached in ~/.cache/sph-astro, reused when
+# present), builds the plugin and the tests in ./build against it (find_package(LAMMPS)),
+# builds lmp with SPH-ASTRO as a standard package (tools/lammps_in_tree.sh, for its ctest),
+# then runs the flagship Sod shock tube and prints its errors and wall time.
 #   tools/setup.sh                 set up and run the flagship scene
 #   tools/setup.sh --no-run        set up only
-#   LAMMPS_SOURCE_DIR=/path tools/setup.sh   use your own LAMMPS source tree
+#   LAMMPS_SOURCE_DIR=/path tools/setup.sh
+#                                  build your own LAMMPS source tree (nothing downloaded)
+#   LAMMPS_DIR=<prefix>/lib/cmake/LAMMPS LAMMPS_SOURCE_DIR=/path tools/setup.sh
+#                                  use an installed LAMMPS (shared library, PLUGIN and KSPACE
+#                                  packages) and the source tree it was built from
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 run_flagship=1
 [ "${1:-}" = "--no-run" ] && run_flagship=0
 
-packages=(cmake g++ make xz-utils dpkg-dev libopenmpi-dev openmpi-bin libfftw3-dev libgtest-dev
-          python3 python3-numpy python3-matplotlib python3-h5py python3-venv python3-pip
-          python3-setuptools python3-wheel python3-pytest libhdf5-dev python3-yt)
+mapfile -t packages < <(grep -v '^#' "$root/tools/debian-packages.txt")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -27,12 +30,24 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}" >/dev/null
 fi
 
-cmake_args=()
-[ -n "${LAMMPS_SOURCE_DIR:-}" ] && cmake_args+=(-D "LAMMPS_SOURCE_DIR=$LAMMPS_SOURCE_DIR")
-cmake -S "$root/cmake" -B "$root/build" "${cmake_args[@]}" >/dev/null
+if [ -n "${LAMMPS_DIR:-}" ]; then
+  [ -n "${LAMMPS_SOURCE_DIR:-}" ] ||
+    { echo "setup: LAMMPS_DIR needs LAMMPS_SOURCE_DIR (the source tree it was built from)" >&2; exit 1; }
+  lammps_dir=$LAMMPS_DIR
+  lammps_src=$(cd "$LAMMPS_SOURCE_DIR" && pwd -P)
+else
+  cache=$("$root/tools/build_lammps.sh" "${LAMMPS_SOURCE_DIR:-}" | tail -1)
+  lammps_dir=$cache/install/lib/cmake/LAMMPS
+  lammps_src=$(cd "$cache/src" && pwd -P)
+fi
+echo "setup: LAMMPS $lammps_dir (source $lammps_src)"
+cmake -S "$root/cmake" -B "$root/build" -D "LAMMPS_DIR=$lammps_dir" \
+      -D "LAMMPS_SOURCE_DIR=$lammps_src" >/dev/null
 cmake --build "$root/build" -j "$(nproc)" >/dev/null
 "$root/tools/install_python.sh" "$root/build"
 echo "setup: built $root/build/plugins/sphastroplugin.so; 'source build/env.sh' puts lmp in reach"
+LAMMPS_SOURCE_DIR=$lammps_src "$root/tools/lammps_in_tree.sh" >/dev/null
+echo "setup: built lmp with SPH-ASTRO as a standard package ($(LAMMPS_SOURCE_DIR=$lammps_src "$root/tools/lammps_in_tree.sh" --path))"
 
 if [ $run_flagship = 1 ]; then
   "$root/examples/sod/run.sh" 1

@@ -6,10 +6,13 @@
 ------------------------------------------------------------------------- */
 
 /* ----------------------------------------------------------------------
-   SPH-ASTRO plugin entry point: registers the package's styles with LAMMPS
+   SPH-ASTRO plugin entry point: registers the package's styles with LAMMPS.
+   Built by cmake/CMakeLists.txt against an installed LAMMPS; the package
+   built into LAMMPS (-D PKG_SPH-ASTRO=on) does not use this file.
 ------------------------------------------------------------------------- */
 
 #include "lammpsplugin.h"
+#include "sph_astro_plugin_sizes.h"
 #include "version.h"
 
 #include "compute_sph_astro_atom.h"
@@ -89,6 +92,8 @@ static Command *state_command_creator(LAMMPS *lmp)
 
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 {
+  sph_astro_check_integer_sizes(lmp);
+
   lammpsplugin_t plugin;
   auto register_plugin = (lammpsplugin_regfunc) regfunc;
 
