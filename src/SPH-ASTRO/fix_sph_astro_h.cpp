@@ -173,10 +173,13 @@ void FixSPHAstroH::init()
       error->warning(FLERR, "fix sph/astro/h dhdt: particles outside group {} keep their h",
                      group->names[igroup]);
   }
+  if (raised_) comm->cutghostuser = user_cutghost_;    // (an init without a run since)
+  raised_ = false;
   user_cutghost_ = comm->cutghostuser;
   pending_cutoff_ = 0.0;
   // continuing a run (pair sph/astro took its h cap): its ghost cutoff and pending widening
   if (pair_->carried_cap_used()) {
+    raised_ = carried_[2] > comm->cutghostuser;
     comm->cutghostuser = MAX(comm->cutghostuser, carried_[2]);
     pending_cutoff_ = carried_[3];
     if (pending_cutoff_ > 0.0) next_reneighbor = update->ntimestep + 1;
@@ -186,6 +189,7 @@ void FixSPHAstroH::init()
 // the setup's h iteration may take h near or past its lists' limit or the ghost cutoff
 void FixSPHAstroH::setup(int /*vflag*/)
 {
+  in_run_ = true;
   check_limits();
   // particles held at the cap by the setup's iteration keep that h for one step
   int capped_local = pair_->h_statistics().capped, capped;
@@ -253,6 +257,7 @@ void FixSPHAstroH::pre_exchange()
 void FixSPHAstroH::post_run()
 {
   carry();
+  in_run_ = raised_ = false;
   comm->cutghostuser = user_cutghost_;
   pending_cutoff_ = 0.0;
 }
@@ -266,9 +271,10 @@ void FixSPHAstroH::carry()
   carried_[3] = pending_cutoff_;
 }
 
+// (between runs the values carried from the last run are written)
 void FixSPHAstroH::write_restart(FILE *fp)
 {
-  carry();
+  if (in_run_) carry();
   if (comm->me != 0) return;
   int size = sizeof(carried_);
   fwrite(&size, sizeof(int), 1, fp);

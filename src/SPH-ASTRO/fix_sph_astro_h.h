@@ -73,6 +73,8 @@ class FixSPHAstroH : public Fix {
   // what a run that continues this one keeps (restart file, or the next run): the pair's h cap
   // at the start and now, the ghost cutoff this fix set (0: the user's), the pending one
   double carried_[4];
+  bool in_run_ = false;    // between setup and post_run (carry() reads the run's state)
+  bool raised_ = false;    // init raised comm_modify cutoff to the carried one (no run since)
   void carry();
   void check_limits();
   SPHAstro::GradhStatistics *drift_stats_;    // dhdt: the latest drift's capped particles
