@@ -6,7 +6,7 @@ M(t) of McNally, Lyra & Passy (2012, ApJS 201, 18, eqs. 6-9) from the thermo out
 (column v_M), against a reference:
 
 * ``--reference grid`` (default): the non-linear grid solution of kh_grid.py, tabulated in
-  kh_grid_reference.txt (512^2 cells, MUSCL-Hancock + HLLC; within 1 % of 256^2 to t = 2),
+  kh_grid_reference.txt (1024^2 cells, MUSCL-Hancock + HLLC; within 0.05 % of 512^2 to t = 2),
   compared over t in [0, 2];
 * ``--reference linear`` or a file name: the linear reference of kh_linear.py (the seed evolved
   with the linearised Euler equations; growth rate 2.83 once the eigenmode dominates), valid

@@ -39,7 +39,7 @@ class GridAgainstLinear(unittest.TestCase):
 
 class ReferenceTable(unittest.TestCase):
     def test_table_matches_linear_early(self):
-        # the committed 512^2 table: M(0) = 0.01 and within 0.5 % of linear theory at t = 0.5
+        # the committed 1024^2 table: M(0) = 0.01 and within 0.5 % of linear theory at t = 0.5
         t, m = kh_grid.load(os.path.join(HERE, "kh_grid_reference.txt"))
         self.assertEqual(len(t), 201)
         self.assertAlmostEqual(t[-1], 2.0)
