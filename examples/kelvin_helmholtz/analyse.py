@@ -5,10 +5,10 @@
 M(t) of McNally, Lyra & Passy (2012, ApJS 201, 18, eqs. 6-9) from the thermo output of the run
 (column v_M), against a reference:
 
-* ``--reference grid`` (default): the non-linear grid solution of kh_grid.py, tabulated in
+* ``--reference grid`` (default): the non-linear grid solution of sphastro.kh_grid, tabulated in
   kh_grid_reference.txt (1024^2 cells, MUSCL-Hancock + HLLC; within 0.05 % of 512^2 to t = 2),
   compared over t in [0, 2];
-* ``--reference linear`` or a file name: the linear reference of kh_linear.py (the seed evolved
+* ``--reference linear`` or a file name: the linear reference of sphastro.kh_linear (the seed evolved
   with the linearised Euler equations; growth rate 2.83 once the eigenmode dominates), valid
   while the perturbation is small, compared over t in [0, 1] (the file is written when missing).
 
@@ -38,9 +38,8 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # also when loaded by path
-import kh_linear  # noqa: E402
-from sphastro.thermo import read_thermo  # noqa: E402
+from sphastro import kh_linear
+from sphastro.thermo import read_thermo
 
 GRID_TABLE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "kh_grid_reference.txt")
 
@@ -51,7 +50,7 @@ def reference(path=None):
 
 
 def grid_reference(path=GRID_TABLE):
-    """(t, M) of the grid solution (kh_grid.py) on [0, 2] every 0.01."""
+    """(t, M) of the grid solution (sphastro.kh_grid) on [0, 2] every 0.01."""
     data = np.loadtxt(path, ndmin=2)
     return data[:, 0], data[:, 1]
 
@@ -99,8 +98,8 @@ def plot(runs, labels, ref, path, tcmp, kind="linear"):
 
     fig, ax = plt.subplots(figsize=(6.0, 4.2))
     tr, mr = ref
-    ax.semilogy(tr, mr, "k-", lw=1.6, label="linear theory (kh_linear.py)" if kind == "linear"
-                else "grid reference (kh_grid.py)")
+    ax.semilogy(tr, mr, "k-", lw=1.6, label="linear theory (sphastro.kh_linear)" if kind == "linear"
+                else "grid reference (sphastro.kh_grid)")
     for k, (th, label) in enumerate(zip(runs, labels)):
         ax.semilogy(th["Time"], th["v_M"], "-", lw=1.2, color=f"C{k}", label=label)
     ax.axvspan(0.0, tcmp, color="0.9", zorder=0)
@@ -143,7 +142,7 @@ def main(argv=None):
                         "reference, 1 for the linear one)")
     parser.add_argument("--reference", default="grid",
                         help="grid (kh_grid_reference.txt, default), linear, or a t M file of "
-                        "kh_linear.py (computed now if missing; written then)")
+                        "sphastro.kh_linear (computed now if missing; written then)")
     parser.add_argument("--png", default=None, help="write the M(t) plot")
     parser.add_argument("--assert", dest="bounds", default=None,
                         help="e.g. growth=0.5,l1=0.4 (growth: lower bound; others upper)")
@@ -151,7 +150,7 @@ def main(argv=None):
 
     kind, ref, tdefault = select_reference(args.reference)
     tcmp = args.tcmp if args.tcmp is not None else tdefault
-    print(f"reference: {kind} ({GRID_TABLE if kind == 'grid' else 'kh_linear.py'}), "
+    print(f"reference: {kind} ({GRID_TABLE if kind == 'grid' else 'sphastro.kh_linear'}), "
           f"window [0, {tcmp:g}] (or to the run's end)")
     labels = args.labels.split(",") if args.labels else [os.path.basename(os.path.dirname(
         os.path.abspath(p))) or p for p in args.logs]

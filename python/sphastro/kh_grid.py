@@ -5,7 +5,7 @@
 (2012, ApJS 201, 18) solved with a second-order Godunov finite-volume code, and its mode
 amplitude M(t) (their eqs. 6-9) every 0.01 up to t = 2.
 
-The solver is kh_grid.cpp next to this script (compiled here with g++ -O3): 2D compressible
+The solver is examples/kelvin_helmholtz/kh_grid.cpp (compiled here with g++ -O3): 2D compressible
 Euler, gamma 5/3, periodic unit box, MUSCL-Hancock with MC-limited primitive slopes and the
 HLLC Riemann solver (Toro 2009, Riemann Solvers and Numerical Methods for Fluid Dynamics,
 sec. 14.4 and 10.4), Strang-split directions, CFL 0.4; the initial state (their eqs. 1-5) is
@@ -18,7 +18,7 @@ reference (kh_linear.py) at t = 0.5 and 1, and writes the finest run's table.
 
 Usage::
 
-    python3 kh_grid.py [--n 128,256,512] [--tend 2] [--out kh_grid_reference.txt]
+    python3 -m sphastro.kh_grid [--n 128,256,512] [--tend 2] [--out kh_grid_reference.txt]
         [--cache DIR]   (keeps kh_grid_N.txt of each run there and reuses them)
         [--threads 1]   (OpenMP threads of the solver; the lines of a sweep are independent,
                          so the result does not depend on the thread count)
@@ -35,13 +35,18 @@ import time
 
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SOURCE = os.path.join(HERE, "kh_grid.cpp")
+from .runs import repo_root
 
 
-def binary(workdir=None):
+def source(root=None):
+    """examples/kelvin_helmholtz/kh_grid.cpp of the SPH-ASTRO tree (root, else $SPH_ASTRO_ROOT)."""
+    return os.path.join(repo_root(root), "examples", "kelvin_helmholtz", "kh_grid.cpp")
+
+
+def binary(workdir=None, root=None):
     """Path of the compiled kh_grid.cpp (compiled once per source version)."""
-    with open(SOURCE, "rb") as f:
+    src = source(root)
+    with open(src, "rb") as f:
         tag = hashlib.sha1(f.read()).hexdigest()[:12]
     workdir = workdir or os.path.join(tempfile.gettempdir(), f"sphastro-kh-grid-{os.getuid()}")
     os.makedirs(workdir, exist_ok=True)
@@ -49,12 +54,12 @@ def binary(workdir=None):
     if not os.path.exists(exe):
         cxx = os.environ.get("CXX") or shutil.which("g++") or "c++"
         tmp = exe + f".{os.getpid()}"
-        subprocess.run([cxx, "-O3", "-std=c++11", "-fopenmp", "-o", tmp, SOURCE], check=True)
+        subprocess.run([cxx, "-O3", "-std=c++11", "-fopenmp", "-o", tmp, src], check=True)
         os.replace(tmp, exe)
     return exe
 
 
-def run(n, tend=2.0, dt_out=0.01, cfl=0.4, cache=None, threads=1):
+def run(n, tend=2.0, dt_out=0.01, cfl=0.4, cache=None, threads=1, root=None):
     """(t, M) of one N x N run; read from cache/kh_grid_N.txt when it holds the same run."""
     path = os.path.join(cache, f"kh_grid_{n}.txt") if cache else None
     if path and os.path.exists(path):
@@ -63,7 +68,7 @@ def run(n, tend=2.0, dt_out=0.01, cfl=0.4, cache=None, threads=1):
             return data[:, 0], data[:, 1], float("nan")
     start = time.time()
     env = dict(os.environ, OMP_NUM_THREADS=str(threads))
-    out = subprocess.run([binary(), str(n), repr(tend), repr(dt_out), repr(cfl)], check=True,
+    out = subprocess.run([binary(root=root), str(n), repr(tend), repr(dt_out), repr(cfl)], check=True,
                          capture_output=True, text=True, env=env).stdout
     wall = time.time() - start
     data = np.loadtxt(out.splitlines(), ndmin=2)
@@ -117,7 +122,7 @@ def main(argv=None):
         at = "  ".join(f"t = {k:g}: {v:.4f}" for k, v in d.items() if not isinstance(k, str))
         print(f"|M_{a} - M_{b}| / M_{b}: max {d['max']:.4f} (t = {d['tmax']:.2f})  {at}")
 
-    import kh_linear
+    from . import kh_linear
     tl, ml = kh_linear.load_or_compute(None, ny=256, tend=min(args.tend, 2.0), dt_out=args.dt_out)
     tf, mf = runs[sizes[-1]]
     for tt in (0.5, 1.0):
@@ -131,7 +136,7 @@ def main(argv=None):
         lines = ["Kelvin-Helmholtz of McNally, Lyra & Passy (2012): mode amplitude M (eqs. 6-9)",
                  f"from kh_grid.cpp (MUSCL-Hancock, MC limiter, HLLC, Strang split, CFL {args.cfl:g}),"
                  f" {n}^2 cells, cell-centre sampled initial state",
-                 "command: python3 examples/kelvin_helmholtz/kh_grid.py --n "
+                 "command: python3 -m sphastro.kh_grid --n "
                  f"{args.n} --tend {args.tend:g} --out examples/kelvin_helmholtz/kh_grid_reference.txt"]
         if n in gaps:
             a, d = gaps[n]

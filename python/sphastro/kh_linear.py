@@ -30,7 +30,7 @@ non-linear solution once the billows roll up (M of order 0.1 and more).
 
 Usage::
 
-    python3 kh_linear.py [--ny 1024] [--tend 2] [--out kh_linear.txt]
+    python3 -m sphastro.kh_linear [--ny 1024] [--tend 2] [--out kh_linear.txt]
 
 writes the columns t, M (every --dt-out) and prints the late-time growth rate
 d ln M / dt.
