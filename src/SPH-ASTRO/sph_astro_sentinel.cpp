@@ -217,7 +217,8 @@ void StabilitySentinel::check(PairSPHAstro *pair, FixSPHAstroH *hfix, int groupb
 {
   if (action_ == Action::OFF) return;
   // (the run's first timestep: that of its first step, all setup forces in)
-  if (dt_run_start_ == 0.0) dt_run_start_ = update->dt;
+  const bool first_step = dt_run_start_ == 0.0;
+  if (first_step) dt_run_start_ = update->dt;
   if (!dt_reported_ && adaptive && collapse_ > 0.0 && update->dt < collapse_ * dt_run_start_) {
     dt_reported_ = true;
     const std::string why = cause();
@@ -227,7 +228,7 @@ void StabilitySentinel::check(PairSPHAstro *pair, FixSPHAstroH *hfix, int groupb
         "state) that drives the criteria down; keyword collapse sets the share",
         update->dt, update->ntimestep, collapse_, dt_run_start_, why));
   }
-  check_support(pair, groupbit);
+  if (first_step || hfix) check_support(pair, groupbit);    // (fixed h: h does not change)
   const bool check_h = !h_reported_ && hfix;
   // particles alone in their kernel support feel no pressure (the counts of the latest
   // density pass; density continuity has none without a pass of its own)
