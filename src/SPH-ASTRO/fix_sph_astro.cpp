@@ -209,7 +209,8 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
     if (xsph_eps_ > 0.0)
       error->all(FLERR, "fix sph/astro: xsph is not available with steps individual");
     steps_ = new IndividualSteps(lmp, this, limiter_levels_);
-    comm_forward = comm_reverse = 1;
+    comm_forward = 2;    // step begin and end (IndividualSteps::pair_impulses)
+    comm_reverse = 6;    // pair impulses and forces
     // [5] active particles this step, [6] occupied bins, [7] particle-updates, [8] woken
     size_vector = 8;
   }
@@ -354,7 +355,7 @@ void FixSPHAstro::setup(int /*vflag*/)
     // step 1, when the setup forces of all fixes are in
     if (!steps_->continuing()) {
       wanted_steps(true);
-      steps_->start(wanted_, dtmax_, tend_ > 0.0 ? tend_ - current_time() : 0.0, pair_);
+      steps_->start(wanted_, dtmax_, tend_ > 0.0 ? tend_ - current_time() : 0.0, pair_, false);
       dt_pending_ = true;
     }
     next_individual_timestep();
@@ -390,7 +391,7 @@ void FixSPHAstro::initial_integrate(int /*vflag*/)
       // (the time at the start of this step: current_time() is that at its end)
       const double now = current_time() - update->dt;
       wanted_steps(true);
-      steps_->start(wanted_, dtmax_, tend_ > 0.0 ? tend_ - now : 0.0, pair_);
+      steps_->start(wanted_, dtmax_, tend_ > 0.0 ? tend_ - now : 0.0, pair_, true);
       next_individual_timestep();
     }
     steps_->kick_drift(hfix_ ? pair_->h_cap() : 0.0, evolve_u_);
@@ -461,7 +462,7 @@ void FixSPHAstro::initial_integrate(int /*vflag*/)
 void FixSPHAstro::final_integrate()
 {
   if (steps_) {
-    steps_->final_kick(evolve_u_);
+    steps_->final_kick(evolve_u_, pair_);
     return;
   }
   const double dtf = 0.5 * update->dt;

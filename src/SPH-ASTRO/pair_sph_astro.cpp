@@ -272,6 +272,7 @@ PassContext PairSPHAstro::context()
   ctx.tag = atom->tag;
   ctx.error = error;
   ctx.tally = evflag ? this : nullptr;
+  ctx.pair_forces = nullptr;
   return ctx;
 }
 
@@ -360,6 +361,8 @@ void PairSPHAstro::compute(int eflag, int vflag)
                  STEPS_FIX_ID);
     arrays.steps = {active_, atom->dvector[step_index_->omega], atom->dvector[step_index_->balsara],
                     atom->dvector[step_index_->divv], atom->dvector[step_index_->nneigh]};
+    pair_forces_.clear();    // fix sph/astro kicks both atoms of each pair with its force
+    ctx.pair_forces = &pair_forces_;
   }
   PairExchange exchange(this);
   ForceEvaluation evaluation(ctx, *opt_, *scheme_, arrays, exchange);
@@ -567,5 +570,6 @@ void *PairSPHAstro::extract_peratom(const char *name, int &ncol)
 
 double PairSPHAstro::memory_usage()
 {
-  return fields_->memory_usage() + lists_->memory_usage() + Pair::memory_usage();
+  return fields_->memory_usage() + lists_->memory_usage() + Pair::memory_usage() +
+      static_cast<double>(pair_forces_.capacity() * sizeof(SPHAstro::PairForce));
 }

@@ -15,8 +15,10 @@ PairStyle(sph/astro,PairSPHAstro);
 #define LMP_PAIR_SPH_ASTRO_H
 
 #include "pair.h"
+#include "sph_astro_pair_force.h"
 
 #include <initializer_list>
+#include <vector>
 
 namespace SPHAstro {
 struct PairOptions;
@@ -125,6 +127,9 @@ class PairSPHAstro : public Pair {
   void set_active(const char *active) { active_ = active; }
   // the pairs of the latest evaluation with individual steps (the limiter's neighbours)
   const SPHAstro::NeighView &evaluated_pairs() const;
+  // the pressure and viscous force of each pair of the latest evaluation with individual
+  // steps (valid until the next reneighbouring)
+  const std::vector<SPHAstro::PairForce> &pair_forces() const { return pair_forces_; }
 
   // the communication of one stage of a force evaluation (sph_astro_force_evaluation.h):
   // owned -> ghost copies of these arrays, or the ghosts' parts summed into their owners
@@ -141,6 +146,7 @@ class PairSPHAstro : public Pair {
   SPHAstro::ContinuityIndex *continuity_index_;
   SPHAstro::StepIndex *step_index_;
   const char *active_;
+  std::vector<SPHAstro::PairForce> pair_forces_;
 
   SPHAstro::Scheme *scheme_;    // what the package's fixes ask for (sph_astro_scheme.h)
   bool entropy_init_pending_, density_init_pending_;

@@ -28,6 +28,18 @@ using namespace LAMMPS_NS;
 
 namespace SPHAstro {
 
+namespace {
+  constexpr int NSUM = 8;    // per-atom sums of pair_impulses()
+
+  // u + du for du >= -u/2, else u^2 / (4 |du|): positive, and continuous with its slope at
+  // du = -u/2. (An inactive particle's u already holds the pair kicks of its neighbours'
+  // evaluations since its own, which the linear prediction with its last du/dt counts again.)
+  inline double predicted_energy(double u, double du)
+  {
+    return du >= -0.5 * u ? u + du : u * u / (-4.0 * du);
+  }
+}    // namespace
+
 IndividualSteps::IndividualSteps(LAMMPS *lmp, Fix *owner, int levels) :
     Pointers(lmp), owner_(owner), levels_(levels)
 {
@@ -94,7 +106,7 @@ void IndividualSteps::setup_pre_force(PairSPHAstro *pair)
 }
 
 void IndividualSteps::start(const std::vector<double> &wanted, double dtmax, double time_left,
-                            PairSPHAstro *pair)
+                            PairSPHAstro *pair, bool open_pairs)
 {
   const int nlocal = atom->nlocal;
   const int *mask = atom->mask;
@@ -128,6 +140,26 @@ void IndividualSteps::start(const std::vector<double> &wanted, double dtmax, dou
   updates_ = steps_ = woken_ = 0.0;
   hierarchy_step_ = update->ntimestep;
   assign_bins(wanted, true, pair);
+  if (!open_pairs) {
+    advance_to_next();
+    return;
+  }
+  pair_impulses(pair, false);
+  double **accel_other = atom->darray[idx_.accel_other];
+  double **kick = atom->darray[idx_.kick];
+  double *dudt_other = atom->dvector[idx_.dudt_other];
+  double *ukick = atom->dvector[idx_.ukick];
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & owner_->groupbit)) continue;
+    const double m = mass(i);
+    const double *sum = &sums_[NSUM * i];
+    for (int d = 0; d < 3; d++) {
+      accel_other[i][d] = (f[i][d] - sum[3 + d]) / m;
+      kick[i][d] = sum[d] / m;
+    }
+    dudt_other[i] = dudt[i] - sum[7];
+    ukick[i] = sum[6];
+  }
   advance_to_next();
 }
 
@@ -148,7 +180,11 @@ void IndividualSteps::kick_drift(double h_cap, bool evolve_u)
   const double *begin = atom->dvector[idx_.begin];
   const double *end = atom->dvector[idx_.end];
   double **accel = atom->darray[idx_.accel];
+  double **accel_other = atom->darray[idx_.accel_other];
+  double **kick = atom->darray[idx_.kick];
   const double *dudt = atom->dvector[idx_.dudt];
+  const double *dudt_other = atom->dvector[idx_.dudt_other];
+  double *ukick = atom->dvector[idx_.ukick];
   const double *divv = atom->dvector[idx_.divv];
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) {
@@ -156,16 +192,22 @@ void IndividualSteps::kick_drift(double h_cap, bool evolve_u)
       uest[i] = u[i];
       continue;
     }
-    if (begin[i] == ti_now_) {    // a step begins: first half kick
+    for (int d = 0; d < 3; d++) {    // the pair kicks that opened at the last evaluation
+      v[i][d] += kick[i][d];
+      kick[i][d] = 0.0;
+    }
+    if (evolve_u) u[i] += ukick[i];
+    ukick[i] = 0.0;
+    if (begin[i] == ti_now_) {    // a step begins: first half kick (forces not of pairs)
       const double half = 0.5 * (end[i] - begin[i]) * t;
-      for (int d = 0; d < 3; d++) v[i][d] += half * accel[i][d];
-      if (evolve_u) u[i] += half * dudt[i];
+      for (int d = 0; d < 3; d++) v[i][d] += half * accel_other[i][d];
+      if (evolve_u) u[i] += half * dudt_other[i];
     }
     for (int d = 0; d < 3; d++) x[i][d] += dt * v[i][d];
     // predicted to the end of this LAMMPS step, from the middle of the particle's step
     const double tau = (ti_next_ - 0.5 * (begin[i] + end[i])) * t;
     for (int d = 0; d < 3; d++) vest[i][d] = v[i][d] + tau * accel[i][d];
-    uest[i] = evolve_u ? u[i] + tau * dudt[i] : u[i];
+    uest[i] = evolve_u ? predicted_energy(u[i], tau * dudt[i]) : u[i];
     // rho and h follow the last div v (active particles: the h iteration's first guess)
     if (h_cap > 0.0) h[i] = std::min(h[i] * std::exp(dt_over_d * divv[i]), h_cap);
     rho[i] *= std::exp(-dt * divv[i]);
@@ -191,8 +233,9 @@ void IndividualSteps::pre_force(PairSPHAstro *pair)
   pair->set_active(active_.data());
 }
 
-void IndividualSteps::final_kick(bool evolve_u)
+void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
 {
+  pair_impulses(pair, true);
   const double t = tick();
   const int nlocal = atom->nlocal;
   const int *mask = atom->mask;
@@ -203,28 +246,37 @@ void IndividualSteps::final_kick(bool evolve_u)
   const double *begin = atom->dvector[idx_.begin];
   const double *end = atom->dvector[idx_.end];
   double **accel = atom->darray[idx_.accel];
+  double **accel_other = atom->darray[idx_.accel_other];
   double *dudt_kept = atom->dvector[idx_.dudt];
+  double *dudt_other = atom->dvector[idx_.dudt_other];
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
-    if (!active_[i]) {    // forces of this step are not its: its last evaluation's
+    // the pairs evaluated now close their interval on both atoms, active or not
+    const double *sum = &sums_[NSUM * i];
+    for (int d = 0; d < 3; d++) v[i][d] += sum[d] / m;
+    if (evolve_u) u[i] += sum[6];
+    double half = 0.0;
+    if (active_[i]) {
+      half = 0.5 * (end[i] - begin[i]) * t;
+      for (int d = 0; d < 3; d++) {
+        accel[i][d] = f[i][d] / m;
+        accel_other[i][d] = (f[i][d] - sum[3 + d]) / m;
+        v[i][d] += half * accel_other[i][d];
+      }
+      dudt_kept[i] = dudt[i];
+      dudt_other[i] = dudt[i] - sum[7];
+      if (evolve_u) u[i] += half * dudt_other[i];
+    } else {    // other forces of this step are not its: its last evaluation's
       for (int d = 0; d < 3; d++) f[i][d] = m * accel[i][d];
       dudt[i] = dudt_kept[i];
-      continue;
     }
-    const double half = 0.5 * (end[i] - begin[i]) * t;
-    for (int d = 0; d < 3; d++) {
-      accel[i][d] = f[i][d] / m;
-      v[i][d] += half * accel[i][d];
-    }
-    dudt_kept[i] = dudt[i];
     if (evolve_u) {
-      u[i] += half * dudt[i];
       if (!(u[i] >= 0.0) || !std::isfinite(u[i]))
         error->one(FLERR,
                    "fix sph/astro: atom {} has specific internal energy u = {} (du/dt = {}) at "
                    "step {} (its own step {}); lower the timestep (courant, force, energy)",
-                   atom->tag[i], u[i], dudt[i], update->ntimestep, 2.0 * half);
+                   atom->tag[i], u[i], dudt[i], update->ntimestep, 2.0 * (end[i] - begin[i]) * t);
     }
   }
 }
@@ -234,6 +286,17 @@ void IndividualSteps::end_of_step(const std::vector<double> &wanted, PairSPHAstr
   ti_now_ = ti_next_;
   hierarchy_step_ = update->ntimestep;
   assign_bins(wanted, false, pair);
+  pair_impulses(pair, false);    // the pairs evaluated now open their next interval
+  const int nlocal = atom->nlocal;
+  const int *mask = atom->mask;
+  double **kick = atom->darray[idx_.kick];
+  double *ukick = atom->dvector[idx_.ukick];
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & owner_->groupbit)) continue;
+    const double m = mass(i);
+    for (int d = 0; d < 3; d++) kick[i][d] = sums_[NSUM * i + d] / m;
+    ukick[i] = sums_[NSUM * i + 6];
+  }
   advance_to_next();
 }
 
@@ -314,8 +377,8 @@ void IndividualSteps::limit(PairSPHAstro *pair)
   double *bin = atom->dvector[idx_.bin];
   const double *begin = atom->dvector[idx_.begin];
   double *end = atom->dvector[idx_.end];
-  double **accel = atom->darray[idx_.accel];
-  const double *dudt = atom->dvector[idx_.dudt];
+  double **accel = atom->darray[idx_.accel_other];
+  const double *dudt = atom->dvector[idx_.dudt_other];
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit) || !(required_[i] > bins_[i])) continue;
     if (active_[i]) {
@@ -325,7 +388,9 @@ void IndividualSteps::limit(PairSPHAstro *pair)
     // wake a sleeping particle: its step ends at the next point of the allowed grid
     const double new_end = TimeBins::wake_end(ti_now_, static_cast<int>(required_[i]));
     if (!(new_end < end[i])) continue;
-    // its first half kick becomes that of the shortened step, and so does its drift since
+    // its first half kick (forces not of pairs) becomes that of the shortened step, and so
+    // does its drift since; the pair kicks that opened an interval with a sleeping partner
+    // keep their length (the pairs of the woken particle with the waking ones open theirs now)
     const double shift = 0.5 * (new_end - end[i]) * t;
     const double since = (ti_now_ - begin[i]) * t;
     for (int d = 0; d < 3; d++) {
@@ -337,6 +402,53 @@ void IndividualSteps::limit(PairSPHAstro *pair)
     bin[i] = required_[i];
     woken_ += 1.0;
   }
+}
+
+// the pairs of the latest force evaluation kick both their atoms with the same impulse
+// F_ij w_ij (Springel 2010, MNRAS 401, 791, sec. 7: a pair is integrated on the shorter step of
+// its two atoms). The pair's interval runs from one time either atom is active to the next:
+// closing, at the evaluation (ti_next_), w = (ti_next_ - max(begin_i, begin_j)) / 2; opening,
+// after the new bins (at ti_now_), w = (min(end_i, end_j) - ti_now_) / 2. Per owned atom:
+// sums_[8i..8i+2] = sum_j F_ij w_ij, [8i+3..8i+5] = sum_j F_ij, [8i+6] = sum_j du_ij/dt w_ij,
+// [8i+7] = sum_j du_ij/dt (with the ghosts' parts)
+void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing)
+{
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  if (times_.size() < 2 * static_cast<std::size_t>(nall)) times_.resize(2 * nall);
+  const double *begin = atom->dvector[idx_.begin];
+  const double *end = atom->dvector[idx_.end];
+  for (int i = 0; i < nlocal; i++) {
+    times_[2 * i] = begin[i];
+    times_[2 * i + 1] = end[i];
+  }
+  comm_ = Comm::TIMES;
+  comm->forward_comm(owner_, 2);
+  sums_.assign(NSUM * static_cast<std::size_t>(nall), 0.0);
+  const double half_tick = 0.5 * tick();
+  for (const PairForce &p : pair->pair_forces()) {
+    const int i = p.i, j = p.j >= 0 ? p.j : ~p.j;
+    const double w = half_tick *
+        (closing ? ti_next_ - std::max(times_[2 * i], times_[2 * j])
+                 : std::min(times_[2 * i + 1], times_[2 * j + 1]) - ti_now_);
+    double *si = &sums_[NSUM * i];
+    for (int d = 0; d < 3; d++) {
+      si[d] += w * p.f[d];
+      si[3 + d] += p.f[d];
+    }
+    si[6] += w * p.dudt_i;
+    si[7] += p.dudt_i;
+    if (p.j < 0) continue;
+    double *sj = &sums_[NSUM * j];
+    for (int d = 0; d < 3; d++) {
+      sj[d] -= w * p.f[d];
+      sj[3 + d] -= p.f[d];
+    }
+    sj[6] += w * p.dudt_j;
+    sj[7] += p.dudt_j;
+  }
+  comm_ = Comm::SUMS;
+  comm->reverse_comm(owner_, NSUM);
 }
 
 // the next LAMMPS step ends where the first particle step ends; at the end of a cycle (all
@@ -422,6 +534,13 @@ std::string IndividualSteps::shortest_step() const
 
 int IndividualSteps::pack_forward_comm(int n, int *list, double *buf)
 {
+  if (comm_ == Comm::TIMES) {
+    for (int k = 0; k < n; k++) {
+      buf[2 * k] = times_[2 * list[k]];
+      buf[2 * k + 1] = times_[2 * list[k] + 1];
+    }
+    return 2 * n;
+  }
   for (int k = 0; k < n; k++)
     buf[k] = comm_ == Comm::ACTIVE ? static_cast<double>(active_[list[k]]) : bins_[list[k]];
   return n;
@@ -429,6 +548,10 @@ int IndividualSteps::pack_forward_comm(int n, int *list, double *buf)
 
 void IndividualSteps::unpack_forward_comm(int n, int first, const double *buf)
 {
+  if (comm_ == Comm::TIMES) {
+    for (int k = 0; k < 2 * n; k++) times_[2 * first + k] = buf[k];
+    return;
+  }
   for (int k = 0; k < n; k++) {
     if (comm_ == Comm::ACTIVE)
       active_[first + k] = buf[k] != 0.0;
@@ -439,12 +562,21 @@ void IndividualSteps::unpack_forward_comm(int n, int first, const double *buf)
 
 int IndividualSteps::pack_reverse_comm(int n, int first, double *buf)
 {
+  if (comm_ == Comm::SUMS) {
+    for (int k = 0; k < NSUM * n; k++) buf[k] = sums_[NSUM * first + k];
+    return NSUM * n;
+  }
   for (int k = 0; k < n; k++) buf[k] = required_[first + k];
   return n;
 }
 
 void IndividualSteps::unpack_reverse_comm(int n, const int *list, const double *buf)
 {
+  if (comm_ == Comm::SUMS) {
+    for (int k = 0; k < n; k++)
+      for (int c = 0; c < NSUM; c++) sums_[NSUM * list[k] + c] += buf[NSUM * k + c];
+    return;
+  }
   for (int k = 0; k < n; k++) required_[list[k]] = std::max(required_[list[k]], buf[k]);
 }
 

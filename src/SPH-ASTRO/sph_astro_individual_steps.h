@@ -9,22 +9,33 @@
 // kick-drift-kick with each particle on its own step dt_max / 2^bin (Springel 2005, MNRAS
 // 364, 1105, sec. 4; the time line: sph_astro_time_bins.h). A LAMMPS step goes from one end
 // of a particle step to the next (update->dt varies); the particles whose step ends with it
-// are active:
-//   a step begins     v += a dt_i/2, u += du/dt dt_i/2          (a, du/dt of its last evaluation)
+// are active, and pair sph/astro evaluates the pairs with an active particle only.
+// Pair forces (pressure and viscosity of pair sph/astro) are integrated pair by pair, on the
+// shorter step of the pair's two particles (Springel 2010, MNRAS 401, 791, sec. 7, for fluxes
+// between cells): the pair's interval runs from one time either particle is active to the
+// next, and at each evaluation both particles get the same impulse F_ij (w_closing +
+// w_opening), half of the interval that ends and half of the one that begins. A particle
+// with a longer step is kicked by its shorter-stepping neighbours' pairs when they are
+// evaluated, so the total momentum is conserved to round-off. All other forces (gravity,
+// other styles, fixes) kick each particle on its own step:
+//   a step begins     v += a_other dt_i/2, u += du/dt dt_i/2   (of its last evaluation)
 //   every LAMMPS step x += v dt (all particles); an inactive particle's rho and h follow its
 //                     last div v: rho *= exp(-div v dt), h *= exp(div v dt / d); every
 //                     particle's v and u are predicted to the end of the LAMMPS step,
 //                     v_est = v + a (t - t_mid,i), u_est = u + du/dt (t - t_mid,i)
-//   forces            pair sph/astro evaluates the pairs with an active particle only
-//   a step ends       v += a_new dt_i/2, u += du/dt_new dt_i/2; the new bin from the timestep
-//                     criteria (shorter at once, longer one bin at a time where its grid
-//                     passes), and the timestep limiter (Saitoh & Makino 2009, ApJ 697, L99):
-//                     no particle more than 2^levels times its neighbours' step; a sleeping
-//                     neighbour is woken (Durier & Dalla Vecchia 2012, MNRAS 419, 465): its step
-//                     ends at the next point of the allowed bin's grid, and its first half kick
-//                     (and the drift since) are corrected to the shortened step.
-// Forces on inactive particles (pair, gravity, other fixes) are computed by LAMMPS every step
-// and not used: an inactive particle keeps the acceleration of its last evaluation.
+//   forces            the pairs with an active particle, each recorded (PairForce)
+//   evaluation        both particles of each pair: v += F_ij w_closing / m
+//   a step ends       v += a_other,new dt_i/2, u += du/dt_new dt_i/2; the new bin from the
+//                     timestep criteria (shorter at once, longer one bin at a time where its
+//                     grid passes), and the timestep limiter (Saitoh & Makino 2009, ApJ 697,
+//                     L99): no particle more than 2^levels times its neighbours' step; a
+//                     sleeping neighbour is woken (Durier & Dalla Vecchia 2012, MNRAS 419,
+//                     465): its step ends at the next point of the allowed bin's grid, and its
+//                     first half kick (and the drift since) are corrected to the shortened step
+//   then              both particles of each pair: v += F_ij w_opening / m, given at the
+//                     start of the next LAMMPS step (v is that of the evaluation until then)
+// Other forces on inactive particles are computed by LAMMPS every step and not used: an
+// inactive particle keeps a_other of its last evaluation. u is integrated per particle.
 
 #ifndef LMP_SPH_ASTRO_INDIVIDUAL_STEPS_H
 #define LMP_SPH_ASTRO_INDIVIDUAL_STEPS_H
@@ -62,9 +73,10 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   // a new hierarchy (first step of the run): every particle's acceleration from the setup's
   // forces, and its bin from wanted (its timestep criteria); the top step dt_max is dtmax (if
   // > 0), else the largest wanted step; with tend > 0 it is (tend - now) / 2^k, so that tend
-  // lies on the grid
+  // lies on the grid; open_pairs (at the first step, when the setup forces of all fixes are
+  // in): the pairs open their first interval, and the other forces are split off
   void start(const std::vector<double> &wanted, double dtmax, double time_left,
-             LAMMPS_NS::PairSPHAstro *pair);
+             LAMMPS_NS::PairSPHAstro *pair, bool open_pairs);
   bool started() const { return started_; }
 
   // LAMMPS' step: first half kicks of the steps that begin, drift, predictions; h_cap > 0:
@@ -80,8 +92,9 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
     dt = (end[i] - begin[i]) * tick();
     return active_[i] != 0;
   }
-  // second half kicks of the active particles; inactive ones get back their f and du/dt
-  void final_kick(bool evolve_u);
+  // the closing pair kicks of this evaluation (all particles) and the second half kicks of
+  // the active particles; inactive ones get back their f and du/dt
+  void final_kick(bool evolve_u, LAMMPS_NS::PairSPHAstro *pair);
   // the active particles' new bins (wanted: their criteria), the limiter, the next step
   void end_of_step(const std::vector<double> &wanted, LAMMPS_NS::PairSPHAstro *pair);
   // owned atom i is inside its step at the current time (after end_of_step): its v and u are
@@ -125,7 +138,8 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   LAMMPS_NS::bigint hierarchy_step_ = -1;    // the step the hierarchy's state belongs to
   std::vector<char> active_;
   std::vector<double> bins_, required_;    // owned and ghost: bins, the limiter's minimum bin
-  enum class Comm { ACTIVE, BINS, REQUIRED } comm_ = Comm::ACTIVE;
+  std::vector<double> times_, sums_;    // begin and end (owned, ghost); pair sums (pair_impulses)
+  enum class Comm { ACTIVE, BINS, REQUIRED, TIMES, SUMS } comm_ = Comm::ACTIVE;
   double active_total_ = 0.0, updates_ = 0.0, steps_ = 0.0, woken_ = 0.0;
 
   double tick() const;
@@ -133,6 +147,7 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   void grow();
   void assign_bins(const std::vector<double> &wanted, bool fresh, LAMMPS_NS::PairSPHAstro *pair);
   void limit(LAMMPS_NS::PairSPHAstro *pair);
+  void pair_impulses(LAMMPS_NS::PairSPHAstro *pair, bool closing);
   void advance_to_next();
 };
 

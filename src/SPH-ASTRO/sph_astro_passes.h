@@ -23,7 +23,10 @@
 #include "sph_astro_fields.h"
 #include "sph_astro_iact.h"
 #include "sph_astro_options.h"
+#include "sph_astro_pair_force.h"
 #include "sph_astro_pair_loop.h"
+
+#include <vector>
 
 namespace LAMMPS_NS {
 class Error;
@@ -50,6 +53,7 @@ struct PassContext {
   const LAMMPS_NS::tagint *tag;
   LAMMPS_NS::Error *error;
   LAMMPS_NS::Pair *tally;    // non-null: tally the pair virial (ev_tally)
+  std::vector<PairForce> *pair_forces;    // non-null: the force pass records each pair
   int nzero() const { return newton ? p.nall : p.nlocal; }
 };
 
