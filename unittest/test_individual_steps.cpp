@@ -134,8 +134,8 @@ TEST(IndividualSteps, WithoutTheLimiterABlastIntoSleepingGasGoesWrong)
     }
     if (!on) EXPECT_EQ(fix_value(lmp, "gas", 7), 0.0);
   }
-  std::printf("energy error without the limiter %g (%s), with it %g\n", error[0],
-              failure.c_str(), error[1]);
+  std::printf("energy error without the limiter %g (%s), with it %g\n", error[0], failure.c_str(),
+              error[1]);
   if (!failure.empty())
     EXPECT_NE(failure.find("specific internal energy u = -"), std::string::npos) << failure;
   EXPECT_GT(error[0], 10.0 * error[1]) << error[0] << " " << error[1];

@@ -52,7 +52,7 @@ struct PassContext {
   double *alpha;    // per-atom alpha of a viscosity switch (owned + ghost), or null
   const LAMMPS_NS::tagint *tag;
   LAMMPS_NS::Error *error;
-  LAMMPS_NS::Pair *tally;    // non-null: tally the pair virial (ev_tally)
+  LAMMPS_NS::Pair *tally;                 // non-null: tally the pair virial (ev_tally)
   std::vector<PairForce> *pair_forces;    // non-null: the force pass records each pair
   int nzero() const { return newton ? p.nall : p.nlocal; }
 };

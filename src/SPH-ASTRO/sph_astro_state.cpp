@@ -129,16 +129,15 @@ void ensure_continuity_state(LAMMPS *lmp, const char *caller)
 }
 
 namespace {
-  const char *const STEP_VECTORS[] = {"step_begin",   "step_end",        "step_bin",
-                                      "step_dudt",    "step_dudt_other", "step_ukick",
-                                      "step_divv",    "step_omega",      "step_balsara",
-                                      "step_nneigh"};
+  const char *const STEP_VECTORS[] = {"step_begin",      "step_end",   "step_bin",  "step_dudt",
+                                      "step_dudt_other", "step_ukick", "step_divv", "step_omega",
+                                      "step_balsara",    "step_nneigh"};
 }
 
 bool find_step_state(LAMMPS *lmp, StepIndex &idx)
 {
   int flag, cols;
-  int *fields[] = {&idx.begin, &idx.end,   &idx.bin,     &idx.dudt,   &idx.dudt_other,
+  int *fields[] = {&idx.begin, &idx.end,  &idx.bin,   &idx.dudt,    &idx.dudt_other,
                    &idx.ukick, &idx.divv, &idx.omega, &idx.balsara, &idx.nneigh};
   for (int k = 0; k < 10; k++) {
     *fields[k] = lmp->atom->find_custom(STEP_VECTORS[k], flag, cols);
@@ -178,9 +177,11 @@ void clear_state(LAMMPS *lmp, int i)
 {
   Atom *atom = lmp->atom;
   int flag, cols;
-  for (const char *name : {"rho", "h", "u", "dudt", "uest", "entropy", "entropy_est", "dentropy",
-                           "rhoest", "drhodt", "step_begin", "step_end", "step_bin", "step_dudt",
-                           "step_dudt_other", "step_ukick", "step_divv", "step_omega", "step_balsara", "step_nneigh"}) {
+  for (const char *name :
+       {"rho",        "h",           "u",          "dudt",         "uest",
+        "entropy",    "entropy_est", "dentropy",   "rhoest",       "drhodt",
+        "step_begin", "step_end",    "step_bin",   "step_dudt",    "step_dudt_other",
+        "step_ukick", "step_divv",   "step_omega", "step_balsara", "step_nneigh"}) {
     const int index = atom->find_custom(name, flag, cols);
     if (index >= 0 && flag == 1 && cols == 0) atom->dvector[index][i] = 0.0;
   }
