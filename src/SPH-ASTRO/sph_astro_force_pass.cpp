@@ -95,14 +95,9 @@ namespace {
         if (s.signal && c.vsig > f.vsigmax[j]) f.vsigmax[j] = c.vsig;
         if (LEVEL >= FORCE_COMMON && s.alpha_u > 0.0) f.condrate[j] += c.crate_j;
       }
-      if (ctx.pair_forces) {    // (thermal_rates() adds the standard form's P dV per atom)
-        const bool pdv = s.energy && s.pressure == PressureForm::STANDARD;
-        ctx.pair_forces->push_back({i,
-                                    update_j ? j : ~j,
-                                    {dx * c.fpair, dy * c.fpair, dz * c.fpair},
-                                    s.energy ? c.heat_i + (pdv ? own.pi.prho * c.vgw_i : 0.0) : 0.0,
-                                    s.energy ? c.heat_j + (pdv ? pj.prho * c.vgw_j : 0.0) : 0.0});
-      }
+      if (ctx.pair_forces)
+        ctx.pair_forces->push_back(
+            {i, update_j ? j : ~j, {dx * c.fpair, dy * c.fpair, dz * c.fpair}});
       if (ctx.tally)
         ctx.tally->ev_tally(i, j, ctx.p.nlocal, ctx.newton, 0.0, 0.0, c.fpair, dx, dy, dz);
     }

@@ -29,15 +29,8 @@ using namespace LAMMPS_NS;
 namespace SPHAstro {
 
 namespace {
-  constexpr int NSUM = 8;    // per-atom sums of pair_impulses()
+  constexpr int NSUM = 6;    // per-atom sums of pair_impulses()
 
-  // u + du for du >= -u/2, else u^2 / (4 |du|): positive, and continuous with its slope at
-  // du = -u/2. (An inactive particle's u already holds the pair kicks of its neighbours'
-  // evaluations since its own, which the linear prediction with its last du/dt counts again.)
-  inline double predicted_energy(double u, double du)
-  {
-    return du >= -0.5 * u ? u + du : u * u / (-4.0 * du);
-  }
 }    // namespace
 
 IndividualSteps::IndividualSteps(LAMMPS *lmp, Fix *owner, int levels) :
@@ -147,8 +140,6 @@ void IndividualSteps::start(const std::vector<double> &wanted, double dtmax, dou
   pair_impulses(pair, false);
   double **accel_other = atom->darray[idx_.accel_other];
   double **kick = atom->darray[idx_.kick];
-  double *dudt_other = atom->dvector[idx_.dudt_other];
-  double *ukick = atom->dvector[idx_.ukick];
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
@@ -157,8 +148,6 @@ void IndividualSteps::start(const std::vector<double> &wanted, double dtmax, dou
       accel_other[i][d] = (f[i][d] - sum[3 + d]) / m;
       kick[i][d] = sum[d] / m;
     }
-    dudt_other[i] = dudt[i] - sum[7];
-    ukick[i] = sum[6];
   }
   advance_to_next();
 }
@@ -183,8 +172,6 @@ void IndividualSteps::kick_drift(double h_cap, bool evolve_u)
   double **accel_other = atom->darray[idx_.accel_other];
   double **kick = atom->darray[idx_.kick];
   const double *dudt = atom->dvector[idx_.dudt];
-  const double *dudt_other = atom->dvector[idx_.dudt_other];
-  double *ukick = atom->dvector[idx_.ukick];
   const double *divv = atom->dvector[idx_.divv];
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) {
@@ -196,18 +183,16 @@ void IndividualSteps::kick_drift(double h_cap, bool evolve_u)
       v[i][d] += kick[i][d];
       kick[i][d] = 0.0;
     }
-    if (evolve_u) u[i] += ukick[i];
-    ukick[i] = 0.0;
     if (begin[i] == ti_now_) {    // a step begins: first half kick (forces not of pairs)
       const double half = 0.5 * (end[i] - begin[i]) * t;
       for (int d = 0; d < 3; d++) v[i][d] += half * accel_other[i][d];
-      if (evolve_u) u[i] += half * dudt_other[i];
+      if (evolve_u) u[i] += half * dudt[i];
     }
     for (int d = 0; d < 3; d++) x[i][d] += dt * v[i][d];
     // predicted to the end of this LAMMPS step, from the middle of the particle's step
     const double tau = (ti_next_ - 0.5 * (begin[i] + end[i])) * t;
     for (int d = 0; d < 3; d++) vest[i][d] = v[i][d] + tau * accel[i][d];
-    uest[i] = evolve_u ? predicted_energy(u[i], tau * dudt[i]) : u[i];
+    uest[i] = evolve_u ? u[i] + tau * dudt[i] : u[i];
     // rho and h follow the last div v (active particles: the h iteration's first guess)
     if (h_cap > 0.0) h[i] = std::min(h[i] * std::exp(dt_over_d * divv[i]), h_cap);
     rho[i] *= std::exp(-dt * divv[i]);
@@ -248,35 +233,31 @@ void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
   double **accel = atom->darray[idx_.accel];
   double **accel_other = atom->darray[idx_.accel_other];
   double *dudt_kept = atom->dvector[idx_.dudt];
-  double *dudt_other = atom->dvector[idx_.dudt_other];
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
     // the pairs evaluated now close their interval on both atoms, active or not
     const double *sum = &sums_[NSUM * i];
     for (int d = 0; d < 3; d++) v[i][d] += sum[d] / m;
-    if (evolve_u) u[i] += sum[6];
-    double half = 0.0;
-    if (active_[i]) {
-      half = 0.5 * (end[i] - begin[i]) * t;
-      for (int d = 0; d < 3; d++) {
-        accel[i][d] = f[i][d] / m;
-        accel_other[i][d] = (f[i][d] - sum[3 + d]) / m;
-        v[i][d] += half * accel_other[i][d];
-      }
-      dudt_kept[i] = dudt[i];
-      dudt_other[i] = dudt[i] - sum[7];
-      if (evolve_u) u[i] += half * dudt_other[i];
-    } else {    // other forces of this step are not its: its last evaluation's
+    if (!active_[i]) {    // other forces of this step are not its: its last evaluation's
       for (int d = 0; d < 3; d++) f[i][d] = m * accel[i][d];
       dudt[i] = dudt_kept[i];
+      continue;
     }
+    const double half = 0.5 * (end[i] - begin[i]) * t;
+    for (int d = 0; d < 3; d++) {
+      accel[i][d] = f[i][d] / m;
+      accel_other[i][d] = (f[i][d] - sum[3 + d]) / m;
+      v[i][d] += half * accel_other[i][d];
+    }
+    dudt_kept[i] = dudt[i];
     if (evolve_u) {
+      u[i] += half * dudt[i];
       if (!(u[i] >= 0.0) || !std::isfinite(u[i]))
         error->one(FLERR,
                    "fix sph/astro: atom {} has specific internal energy u = {} (du/dt = {}) at "
                    "step {} (its own step {}); lower the timestep (courant, force, energy)",
-                   atom->tag[i], u[i], dudt[i], update->ntimestep, 2.0 * (end[i] - begin[i]) * t);
+                   atom->tag[i], u[i], dudt[i], update->ntimestep, 2.0 * half);
     }
   }
 }
@@ -290,12 +271,10 @@ void IndividualSteps::end_of_step(const std::vector<double> &wanted, PairSPHAstr
   const int nlocal = atom->nlocal;
   const int *mask = atom->mask;
   double **kick = atom->darray[idx_.kick];
-  double *ukick = atom->dvector[idx_.ukick];
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
     for (int d = 0; d < 3; d++) kick[i][d] = sums_[NSUM * i + d] / m;
-    ukick[i] = sums_[NSUM * i + 6];
   }
   advance_to_next();
 }
@@ -378,7 +357,7 @@ void IndividualSteps::limit(PairSPHAstro *pair)
   const double *begin = atom->dvector[idx_.begin];
   double *end = atom->dvector[idx_.end];
   double **accel = atom->darray[idx_.accel_other];
-  const double *dudt = atom->dvector[idx_.dudt_other];
+  const double *dudt = atom->dvector[idx_.dudt];
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit) || !(required_[i] > bins_[i])) continue;
     if (active_[i]) {
@@ -409,8 +388,7 @@ void IndividualSteps::limit(PairSPHAstro *pair)
 // its two atoms). The pair's interval runs from one time either atom is active to the next:
 // closing, at the evaluation (ti_next_), w = (ti_next_ - max(begin_i, begin_j)) / 2; opening,
 // after the new bins (at ti_now_), w = (min(end_i, end_j) - ti_now_) / 2. Per owned atom:
-// sums_[8i..8i+2] = sum_j F_ij w_ij, [8i+3..8i+5] = sum_j F_ij, [8i+6] = sum_j du_ij/dt w_ij,
-// [8i+7] = sum_j du_ij/dt (with the ghosts' parts)
+// sums_[6i..6i+2] = sum_j F_ij w_ij, [6i+3..6i+5] = sum_j F_ij (with the ghosts' parts)
 void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing)
 {
   const int nlocal = atom->nlocal;
@@ -436,16 +414,12 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing)
       si[d] += w * p.f[d];
       si[3 + d] += p.f[d];
     }
-    si[6] += w * p.dudt_i;
-    si[7] += p.dudt_i;
     if (p.j < 0) continue;
     double *sj = &sums_[NSUM * j];
     for (int d = 0; d < 3; d++) {
       sj[d] -= w * p.f[d];
       sj[3 + d] -= p.f[d];
     }
-    sj[6] += w * p.dudt_j;
-    sj[7] += p.dudt_j;
   }
   comm_ = Comm::SUMS;
   comm->reverse_comm(owner_, NSUM);

@@ -5,22 +5,21 @@
    (the same licence as LAMMPS); see the LICENSE file.
 ------------------------------------------------------------------------- */
 
-// The record of one pair's force and heating that the force pass keeps with individual
-// timesteps, so that fix sph/astro can kick both atoms of the pair with the same impulse
-// (momentum conserved to round-off) over the same interval (sph_astro_individual_steps.h).
+// The record of one pair's force that the force pass keeps with individual timesteps, so that
+// fix sph/astro can kick both atoms of the pair with the same impulse (momentum conserved to
+// round-off; sph_astro_individual_steps.h).
 
 #ifndef LMP_SPH_ASTRO_PAIR_FORCE_H
 #define LMP_SPH_ASTRO_PAIR_FORCE_H
 
 namespace SPHAstro {
 
-// the pressure and viscous force F_ij on i; -F_ij acts on j; the pair's parts of du_i/dt and
-// du_j/dt (P dV, dissipation, artificial conductivity). j < 0 stands for ~j, a ghost this rank
-// does not update (newton off: the pair is recorded on both ranks, each for its own atom)
+// the pressure and viscous force F_ij on i; -F_ij acts on j. j < 0 stands for ~j, a ghost
+// this rank does not update (newton off: the pair is recorded on both ranks, each for its own
+// atom)
 struct PairForce {
   int i, j;
   double f[3];
-  double dudt_i, dudt_j;
 };
 
 }    // namespace SPHAstro

@@ -129,17 +129,16 @@ void ensure_continuity_state(LAMMPS *lmp, const char *caller)
 }
 
 namespace {
-  const char *const STEP_VECTORS[] = {"step_begin",      "step_end",   "step_bin",  "step_dudt",
-                                      "step_dudt_other", "step_ukick", "step_divv", "step_omega",
-                                      "step_balsara",    "step_nneigh"};
+  const char *const STEP_VECTORS[] = {"step_begin", "step_end",   "step_bin",     "step_dudt",
+                                      "step_divv",  "step_omega", "step_balsara", "step_nneigh"};
 }
 
 bool find_step_state(LAMMPS *lmp, StepIndex &idx)
 {
   int flag, cols;
-  int *fields[] = {&idx.begin, &idx.end,  &idx.bin,   &idx.dudt,    &idx.dudt_other,
-                   &idx.ukick, &idx.divv, &idx.omega, &idx.balsara, &idx.nneigh};
-  for (int k = 0; k < 10; k++) {
+  int *fields[] = {&idx.begin, &idx.end,   &idx.bin,     &idx.dudt,
+                   &idx.divv,  &idx.omega, &idx.balsara, &idx.nneigh};
+  for (int k = 0; k < 8; k++) {
     *fields[k] = lmp->atom->find_custom(STEP_VECTORS[k], flag, cols);
     if (*fields[k] < 0 || flag != 1 || cols != 0) return false;
   }
@@ -169,19 +168,17 @@ void ensure_step_state(LAMMPS *lmp, const char *caller)
                       caller, name, STEPS_FIX_ID);
   lmp->modify->add_fix(std::string(STEPS_FIX_ID) +
                        " all property/atom d_step_begin d_step_end d_step_bin d2_step_accel 3 "
-                       "d2_step_accel_other 3 d2_step_kick 3 d_step_dudt d_step_dudt_other "
-                       "d_step_ukick d_step_divv d_step_omega d_step_balsara d_step_nneigh");
+                       "d2_step_accel_other 3 d2_step_kick 3 d_step_dudt "
+                       "d_step_divv d_step_omega d_step_balsara d_step_nneigh");
 }
 
 void clear_state(LAMMPS *lmp, int i)
 {
   Atom *atom = lmp->atom;
   int flag, cols;
-  for (const char *name :
-       {"rho",        "h",           "u",          "dudt",         "uest",
-        "entropy",    "entropy_est", "dentropy",   "rhoest",       "drhodt",
-        "step_begin", "step_end",    "step_bin",   "step_dudt",    "step_dudt_other",
-        "step_ukick", "step_divv",   "step_omega", "step_balsara", "step_nneigh"}) {
+  for (const char *name : {"rho", "h", "u", "dudt", "uest", "entropy", "entropy_est", "dentropy",
+                           "rhoest", "drhodt", "step_begin", "step_end", "step_bin", "step_dudt",
+                           "step_divv", "step_omega", "step_balsara", "step_nneigh"}) {
     const int index = atom->find_custom(name, flag, cols);
     if (index >= 0 && flag == 1 && cols == 0) atom->dvector[index][i] = 0.0;
   }

@@ -86,17 +86,14 @@ bool find_continuity_state(LAMMPS_NS::LAMMPS *lmp, ContinuityIndex &idx);
 //   d2_step_kick 3             the velocity change of the pair kicks that opened at the last
 //                              evaluation, given at the start of the next LAMMPS step
 //   d_step_dudt                du/dt of its last force evaluation
-//   d_step_dudt_other          the part of it that is not of pairs (physical conduction)
-//   d_step_ukick               the change of u of the pair kicks that opened at the last
-//                              evaluation, given at the start of the next LAMMPS step
 //   d_step_divv                div v (drifts rho and h between its evaluations)
 //   d_step_omega               grad-h factor Omega           (set by pair sph/astro)
 //   d_step_balsara             Balsara factor                (set by pair sph/astro)
 //   d_step_nneigh              neighbours inside the kernel support (set by pair sph/astro)
 constexpr const char *STEPS_FIX_ID = "SPH_ASTRO_STEPS";
 struct StepIndex {
-  int begin = -1, end = -1, bin = -1, accel = -1, accel_other = -1, kick = -1, dudt = -1,
-      dudt_other = -1, ukick = -1, divv = -1, omega = -1, balsara = -1, nneigh = -1;
+  int begin = -1, end = -1, bin = -1, accel = -1, accel_other = -1, kick = -1, dudt = -1, divv = -1,
+      omega = -1, balsara = -1, nneigh = -1;
 };
 void ensure_step_state(LAMMPS_NS::LAMMPS *lmp, const char *caller);
 
