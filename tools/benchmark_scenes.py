@@ -15,7 +15,8 @@ run: the h iteration with grad-h terms, skin 0.5 h), ``sedov16``, ``sedov22``, `
 (examples/sedov to t = 0.1), ``noh24`` (examples/noh to t = 0.6), ``evrard`` (examples/evrard,
 n 16, MSM gravity, to t = 0.8), the same scenes with individual timesteps (``sedov16i``,
 ``sedov22i``, ``sedov35i``, ``noh24i``, ``evrardi``: ``-var steps individual``; their updates
-are the particle-updates fix sph/astro counts), and ``swift35`` and ``swift56``: SWIFT's Sedov at 42 875 and
+are the particle-updates fix sph/astro counts; ``sedov16i2``, ``sedov22i2``, ``sedov35i2`` with
+``-var limiter 2``), and ``swift35`` and ``swift56``: SWIFT's Sedov at 42 875 and
 175 616 particles (``--swift-bin``: the swift executable, built with SPHENIX and the cubic
 spline as its repository describes; ``--swift-dir``: a folder with ``swift_sedov.yml`` and
 ``swift_sedov_ic.py ``; 2 threads, ``--hydro --limiter``). SWIFT is never part of this
@@ -71,9 +72,14 @@ SCENES = {
 for _name in ("sedov16", "sedov22", "sedov35", "noh24", "evrard"):
     _script, _vars = SCENES[_name]
     SCENES[_name + "i"] = (_script, dict(_vars, steps="individual"))
+# Sedov with individual steps and a limiter of 2 levels (factor 4, SWIFT's): row name + "i2"
+for _name in ("sedov16", "sedov22", "sedov35"):
+    _script, _vars = SCENES[_name]
+    SCENES[_name + "i2"] = (_script, dict(_vars, steps="individual", limiter=2))
 SWIFT_ROWS = {"swift35": 35, "swift56": 56}
-ORDER = ["box1e4", "box1e5", "box1e6", "box1e5i", "sedov16", "sedov16i", "sedov22", "sedov22i",
-         "sedov35", "sedov35i", "noh24", "noh24i", "evrard", "evrardi", "swift35", "swift56"]
+ORDER = ["box1e4", "box1e5", "box1e6", "box1e5i", "sedov16", "sedov16i", "sedov16i2", "sedov22",
+         "sedov22i", "sedov22i2", "sedov35", "sedov35i", "sedov35i2", "noh24", "noh24i", "evrard",
+         "evrardi", "swift35", "swift56"]
 
 _LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", re.M)
 _SEARCH = re.compile(r"pair sph/astro neighbour search: .*?per particle: (\S+) half-list "
