@@ -95,9 +95,7 @@ namespace {
         if (s.signal && c.vsig > f.vsigmax[j]) f.vsigmax[j] = c.vsig;
         if (LEVEL >= FORCE_COMMON && s.alpha_u > 0.0) f.condrate[j] += c.crate_j;
       }
-      if (ctx.pair_forces)
-        ctx.pair_forces->push_back(
-            {i, update_j ? j : ~j, {dx * c.fpair, dy * c.fpair, dz * c.fpair}});
+      if (ctx.pair_forces) ctx.pair_forces->push_back({i, update_j ? j : ~j, c.fpair});
       if (ctx.tally)
         ctx.tally->ev_tally(i, j, ctx.p.nlocal, ctx.newton, 0.0, 0.0, c.fpair, dx, dy, dz);
     }

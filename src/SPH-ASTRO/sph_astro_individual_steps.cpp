@@ -268,6 +268,11 @@ void IndividualSteps::end_of_step(const std::vector<double> &wanted, PairSPHAstr
   hierarchy_step_ = update->ntimestep;
   assign_bins(wanted, false, pair);
   pair_impulses(pair, false);    // the pairs evaluated now open their next interval
+  double **x = atom->x;
+  for (std::size_t k = 0; k < woken_list_.size(); k++)
+    for (int d = 0; d < 3; d++) x[woken_list_[k]][d] += woken_dx_[3 * k + d];
+  woken_list_.clear();
+  woken_dx_.clear();
   const int nlocal = atom->nlocal;
   const int *mask = atom->mask;
   double **kick = atom->darray[idx_.kick];
@@ -372,9 +377,11 @@ void IndividualSteps::limit(PairSPHAstro *pair)
     // keep their length (the pairs of the woken particle with the waking ones open theirs now)
     const double shift = 0.5 * (new_end - end[i]) * t;
     const double since = (ti_now_ - begin[i]) * t;
+    // (x moves after the opening pair kicks, which take the pair forces' positions)
+    woken_list_.push_back(i);
     for (int d = 0; d < 3; d++) {
       v[i][d] += shift * accel[i][d];
-      x[i][d] += shift * since * accel[i][d];
+      woken_dx_.push_back(shift * since * accel[i][d]);
     }
     u[i] += shift * dudt[i];
     end[i] = new_end;
@@ -404,21 +411,24 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing)
   comm->forward_comm(owner_, 2);
   sums_.assign(NSUM * static_cast<std::size_t>(nall), 0.0);
   const double half_tick = 0.5 * tick();
+  double **x = atom->x;    // (those of the force evaluation: no drift since)
   for (const PairForce &p : pair->pair_forces()) {
     const int i = p.i, j = p.j >= 0 ? p.j : ~p.j;
+    const double f[3] = {(x[i][0] - x[j][0]) * p.fpair, (x[i][1] - x[j][1]) * p.fpair,
+                         (x[i][2] - x[j][2]) * p.fpair};
     const double w = half_tick *
         (closing ? ti_next_ - std::max(times_[2 * i], times_[2 * j])
                  : std::min(times_[2 * i + 1], times_[2 * j + 1]) - ti_now_);
     double *si = &sums_[NSUM * i];
     for (int d = 0; d < 3; d++) {
-      si[d] += w * p.f[d];
-      si[3 + d] += p.f[d];
+      si[d] += w * f[d];
+      si[3 + d] += f[d];
     }
     if (p.j < 0) continue;
     double *sj = &sums_[NSUM * j];
     for (int d = 0; d < 3; d++) {
-      sj[d] -= w * p.f[d];
-      sj[3 + d] -= p.f[d];
+      sj[d] -= w * f[d];
+      sj[3 + d] -= f[d];
     }
   }
   comm_ = Comm::SUMS;

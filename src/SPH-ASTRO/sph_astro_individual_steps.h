@@ -139,6 +139,8 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   std::vector<char> active_;
   std::vector<double> bins_, required_;    // owned and ghost: bins, the limiter's minimum bin
   std::vector<double> times_, sums_;    // begin and end (owned, ghost); pair sums (pair_impulses)
+  std::vector<int> woken_list_;          // particles woken by the limiter, and their x shift
+  std::vector<double> woken_dx_;
   enum class Comm { ACTIVE, BINS, REQUIRED, TIMES, SUMS } comm_ = Comm::ACTIVE;
   double active_total_ = 0.0, updates_ = 0.0, steps_ = 0.0, woken_ = 0.0;
 

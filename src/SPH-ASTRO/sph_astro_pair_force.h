@@ -14,12 +14,12 @@
 
 namespace SPHAstro {
 
-// the pressure and viscous force F_ij on i; -F_ij acts on j. j < 0 stands for ~j, a ghost
-// this rank does not update (newton off: the pair is recorded on both ranks, each for its own
-// atom)
+// the pressure and viscous force on i is F_ij = fpair (x_i - x_j) (the positions of the force
+// evaluation); -F_ij acts on j. j < 0 stands for ~j, a ghost this rank does not update (newton
+// off: the pair is recorded on both ranks, each for its own atom)
 struct PairForce {
   int i, j;
-  double f[3];
+  double fpair;
 };
 
 }    // namespace SPHAstro
