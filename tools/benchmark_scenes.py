@@ -127,7 +127,7 @@ def run_lammps(name, np_ranks, outdir, env):
 
 
 def run_swift(name, n, outdir, swift_bin, swift_dir):
-    work = os.path.join(outdir, name)
+    work = os.path.abspath(os.path.join(outdir, name))
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
     ic = os.path.join(work, f"sedov_n{n}.hdf5")
