@@ -97,6 +97,7 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
   last_limiting_atom_ = 0;
   steps_ = nullptr;
   limiter_levels_ = 1;
+  pair_kicks_ = false;
   bool individual = false;
 
   time_integrate = 1;
@@ -175,6 +176,17 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
                      "particle's step at most 2^N times its neighbours'; 1 by default)",
                      val);
       }
+    } else if (key == "kicks") {
+      if (strcmp(val, "particle") == 0)
+        pair_kicks_ = false;
+      else if (strcmp(val, "pair") == 0)
+        pair_kicks_ = true;
+      else
+        error->all(FLERR,
+                   "fix sph/astro: kicks '{}' is not one of: particle (each particle kicked by "
+                   "its force on its own step), pair (pair forces integrated pair by pair: "
+                   "momentum conserved to round-off)",
+                   val);
     } else if (sentinel_->parse(key, val)) {
       // sentinel, collapse, hshare (sph_astro_sentinel.h)
     } else if (key == "dt") {
@@ -188,7 +200,7 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
       error->all(FLERR,
                  "fix sph/astro: unknown keyword '{}'; allowed: thermal, courant, force, energy, "
                  "conduction, conductivity, xsph, dtmax, dtmin, tend, dt, steps, limiter, "
-                 "sentinel, collapse, hshare",
+                 "kicks, sentinel, collapse, hshare",
                  key);
     iarg += 2;
   }
@@ -208,7 +220,7 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
                  "from its own criteria)");
     if (xsph_eps_ > 0.0)
       error->all(FLERR, "fix sph/astro: xsph is not available with steps individual");
-    steps_ = new IndividualSteps(lmp, this, limiter_levels_);
+    steps_ = new IndividualSteps(lmp, this, limiter_levels_, pair_kicks_);
     comm_forward = 2;    // step begin and end (IndividualSteps::pair_impulses)
     comm_reverse = 6;    // pair impulses and forces
     // [5] active particles this step, [6] occupied bins, [7] particle-updates, [8] woken

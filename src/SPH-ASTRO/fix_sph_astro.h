@@ -124,6 +124,7 @@ class FixSPHAstro : public Fix {
 
   // individual timesteps (steps individual; sph_astro_individual_steps.h), null: global
   SPHAstro::IndividualSteps *steps_;
+  bool pair_kicks_;       // individual steps: pair forces integrated pair by pair
   int limiter_levels_;    // the limiter: no step more than 2^levels x a neighbour's (0: off)
   std::vector<double> wanted_;
   // the timestep criteria of atom i: Courant, force, energy, conduction (infinite where one

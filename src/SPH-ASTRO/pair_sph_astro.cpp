@@ -361,8 +361,8 @@ void PairSPHAstro::compute(int eflag, int vflag)
                  STEPS_FIX_ID);
     arrays.steps = {active_, atom->dvector[step_index_->omega], atom->dvector[step_index_->balsara],
                     atom->dvector[step_index_->divv], atom->dvector[step_index_->nneigh]};
-    pair_forces_.clear();    // fix sph/astro kicks both atoms of each pair with its force
-    ctx.pair_forces = &pair_forces_;
+    pair_forces_.clear();    // fix sph/astro kicks pair: both atoms of each pair with its force
+    if (record_pair_forces_) ctx.pair_forces = &pair_forces_;
   }
   PairExchange exchange(this);
   ForceEvaluation evaluation(ctx, *opt_, *scheme_, arrays, exchange);

@@ -124,7 +124,12 @@ class PairSPHAstro : public Pair {
   // step ends with this step's force evaluation (one flag per atom, valid until the next
   // reneighbouring; null: global stepping). Only the pairs with an active atom are evaluated,
   // and only active atoms get new values (sph_astro_force_evaluation.h)
-  void set_active(const char *active) { active_ = active; }
+  // record: keep each evaluated pair's force (pair_forces(), for fix sph/astro kicks pair)
+  void set_active(const char *active, bool record = false)
+  {
+    active_ = active;
+    record_pair_forces_ = record;
+  }
   // the pairs of the latest evaluation with individual steps (the limiter's neighbours)
   const SPHAstro::NeighView &evaluated_pairs() const;
   // the pressure and viscous force of each pair of the latest evaluation with individual
@@ -147,6 +152,7 @@ class PairSPHAstro : public Pair {
   SPHAstro::StepIndex *step_index_;
   const char *active_;
   std::vector<SPHAstro::PairForce> pair_forces_;
+  bool record_pair_forces_ = false;
 
   SPHAstro::Scheme *scheme_;    // what the package's fixes ask for (sph_astro_scheme.h)
   bool entropy_init_pending_, density_init_pending_;

@@ -30,11 +30,12 @@ namespace SPHAstro {
 
 namespace {
   constexpr int NSUM = 6;    // per-atom sums of pair_impulses()
+  const double NO_PAIR_KICKS[NSUM] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};    // kicks particle
 
 }    // namespace
 
-IndividualSteps::IndividualSteps(LAMMPS *lmp, Fix *owner, int levels) :
-    Pointers(lmp), owner_(owner), levels_(levels)
+IndividualSteps::IndividualSteps(LAMMPS *lmp, Fix *owner, int levels, bool pair_kicks) :
+    Pointers(lmp), owner_(owner), levels_(levels), pair_kicks_(pair_kicks)
 {
 }
 
@@ -95,7 +96,7 @@ void IndividualSteps::setup_pre_force(PairSPHAstro *pair)
   // a continued hierarchy has every particle's values from its last evaluation: the setup
   // evaluates none; a new one evaluates all
   for (int i = 0; i < nall; i++) active_[i] = !continuing_ && (mask[i] & owner_->groupbit);
-  pair->set_active(active_.data());
+  pair->set_active(active_.data(), pair_kicks_);
 }
 
 void IndividualSteps::start(const std::vector<double> &wanted, double dtmax, double time_left,
@@ -143,7 +144,7 @@ void IndividualSteps::start(const std::vector<double> &wanted, double dtmax, dou
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
-    const double *sum = &sums_[NSUM * i];
+    const double *sum = pair_kicks_ ? &sums_[NSUM * i] : NO_PAIR_KICKS;
     for (int d = 0; d < 3; d++) {
       accel_other[i][d] = (f[i][d] - sum[3 + d]) / m;
       kick[i][d] = sum[d] / m;
@@ -215,7 +216,7 @@ void IndividualSteps::pre_force(PairSPHAstro *pair)
   MPI_Allreduce(&count, &active_total_, 1, MPI_DOUBLE, MPI_SUM, world);
   updates_ += active_total_;
   steps_ += 1.0;
-  pair->set_active(active_.data());
+  pair->set_active(active_.data(), pair_kicks_);
 }
 
 void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
@@ -237,7 +238,7 @@ void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
     // the pairs evaluated now close their interval on both atoms, active or not
-    const double *sum = &sums_[NSUM * i];
+    const double *sum = pair_kicks_ ? &sums_[NSUM * i] : NO_PAIR_KICKS;
     for (int d = 0; d < 3; d++) v[i][d] += sum[d] / m;
     if (!active_[i]) {    // other forces of this step are not its: its last evaluation's
       for (int d = 0; d < 3; d++) f[i][d] = m * accel[i][d];
@@ -276,10 +277,11 @@ void IndividualSteps::end_of_step(const std::vector<double> &wanted, PairSPHAstr
   const int nlocal = atom->nlocal;
   const int *mask = atom->mask;
   double **kick = atom->darray[idx_.kick];
-  for (int i = 0; i < nlocal; i++) {
+  for (int i = 0; pair_kicks_ && i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
-    for (int d = 0; d < 3; d++) kick[i][d] = sums_[NSUM * i + d] / m;
+    const double *sum = &sums_[NSUM * i];
+    for (int d = 0; d < 3; d++) kick[i][d] = sum[d] / m;
   }
   advance_to_next();
 }
@@ -398,6 +400,7 @@ void IndividualSteps::limit(PairSPHAstro *pair)
 // sums_[6i..6i+2] = sum_j F_ij w_ij, [6i+3..6i+5] = sum_j F_ij (with the ghosts' parts)
 void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing)
 {
+  if (!pair_kicks_) return;
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
   if (times_.size() < 2 * static_cast<std::size_t>(nall)) times_.resize(2 * nall);

@@ -58,8 +58,9 @@ struct PairOptions;
 
 class IndividualSteps : protected LAMMPS_NS::Pointers {
  public:
-  // owner: the fix whose communication and group this uses; levels: the limiter (0: off)
-  IndividualSteps(LAMMPS_NS::LAMMPS *lmp, LAMMPS_NS::Fix *owner, int levels);
+  // owner: the fix whose communication and group this uses; levels: the limiter (0: off);
+  // pair_kicks: pair forces integrated pair by pair (else each particle's on its own step)
+  IndividualSteps(LAMMPS_NS::LAMMPS *lmp, LAMMPS_NS::Fix *owner, int levels, bool pair_kicks);
 
   // what the hierarchy does not carry between a particle's evaluations is an error; the fix's
   // group (igroup) must hold all particles
@@ -130,6 +131,7 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
  private:
   LAMMPS_NS::Fix *owner_;
   int levels_;
+  bool pair_kicks_;
   StateIndex state_;
   StepIndex idx_;
   bool started_ = false, continuing_ = false;
@@ -139,7 +141,7 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   std::vector<char> active_;
   std::vector<double> bins_, required_;    // owned and ghost: bins, the limiter's minimum bin
   std::vector<double> times_, sums_;    // begin and end (owned, ghost); pair sums (pair_impulses)
-  std::vector<int> woken_list_;          // particles woken by the limiter, and their x shift
+  std::vector<int> woken_list_;         // particles woken by the limiter, and their x shift
   std::vector<double> woken_dx_;
   enum class Comm { ACTIVE, BINS, REQUIRED, TIMES, SUMS } comm_ = Comm::ACTIVE;
   double active_total_ = 0.0, updates_ = 0.0, steps_ = 0.0, woken_ = 0.0;
