@@ -10,21 +10,11 @@
 // 364, 1105, sec. 4; the time line: sph_astro_time_bins.h). A LAMMPS step goes from one end
 // of a particle step to the next (update->dt varies); the particles whose step ends with it
 // are active, and pair sph/astro evaluates the pairs with an active particle only.
-// Pair forces (pressure and viscosity of pair sph/astro) are integrated pair by pair, on the
-// shorter step of the pair's two particles (Springel 2010, MNRAS 401, 791, sec. 7, for fluxes
-// between cells): the pair's interval runs from one time either particle is active to the
-// next, and at each evaluation both particles get the same impulse F_ij (w_closing +
-// w_opening), half of the interval that ends and half of the one that begins. A particle
-// with a longer step is kicked by its shorter-stepping neighbours' pairs when they are
-// evaluated, so the total momentum is conserved to round-off. All other forces (gravity,
-// other styles, fixes) kick each particle on its own step:
 //   a step begins     v += a_other dt_i/2, u += du/dt dt_i/2   (of its last evaluation)
 //   every LAMMPS step x += v dt (all particles); an inactive particle's rho and h follow its
 //                     last div v: rho *= exp(-div v dt), h *= exp(div v dt / d); every
 //                     particle's v and u are predicted to the end of the LAMMPS step,
 //                     v_est = v + a (t - t_mid,i), u_est = u + du/dt (t - t_mid,i)
-//   forces            the pairs with an active particle, each recorded (PairForce)
-//   evaluation        both particles of each pair: v += F_ij w_closing / m
 //   a step ends       v += a_other,new dt_i/2, u += du/dt_new dt_i/2; the new bin from the
 //                     timestep criteria (shorter at once, longer one bin at a time where its
 //                     grid passes), and the timestep limiter (Saitoh & Makino 2009, ApJ 697,
@@ -32,10 +22,15 @@
 //                     sleeping neighbour is woken (Durier & Dalla Vecchia 2012, MNRAS 419,
 //                     465): its step ends at the next point of the allowed bin's grid, and its
 //                     first half kick (and the drift since) are corrected to the shortened step
-//   then              both particles of each pair: v += F_ij w_opening / m, given at the
-//                     start of the next LAMMPS step (v is that of the evaluation until then)
+// kicks particle (default): a_other is the whole acceleration of the particle's evaluation.
+// kicks pair: pair sph/astro's forces are integrated pair by pair, on the shorter step of the
+// pair's two particles (Springel 2010, MNRAS 401, 791, sec. 7, for fluxes between cells): the
+// pair's interval runs from one time either particle is active to the next, and at each
+// evaluation both particles get the same impulse F_ij (w_closing + w_opening) (the opening
+// part given at the start of the next LAMMPS step), so the total momentum is conserved to
+// round-off; a_other is the rest (gravity, other styles, fixes). u is integrated per particle.
 // Other forces on inactive particles are computed by LAMMPS every step and not used: an
-// inactive particle keeps a_other of its last evaluation. u is integrated per particle.
+// inactive particle keeps a_other of its last evaluation.
 
 #ifndef LMP_SPH_ASTRO_INDIVIDUAL_STEPS_H
 #define LMP_SPH_ASTRO_INDIVIDUAL_STEPS_H
