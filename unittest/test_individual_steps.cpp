@@ -258,6 +258,7 @@ TEST_F(BadInputTest, IndividualStepsArguments)
                "steps 'some' is not one of: global, individual");
   expect_error("fix gas all sph/astro limiter 0", "limiter 0 must be off or a number of bins");
   expect_error("fix gas all sph/astro steps individual kicks both", "kicks 'both' is not one of");
+  expect_error("fix gas all sph/astro kicks pair", "kicks pair needs steps individual");
   expect_error("fix gas all sph/astro steps individual dt fixed", "needs dt adaptive");
   expect_error("fix gas all sph/astro steps individual xsph 0.5", "xsph is not available");
 }

@@ -177,16 +177,9 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
                      val);
       }
     } else if (key == "kicks") {
-      if (strcmp(val, "particle") == 0)
-        pair_kicks_ = false;
-      else if (strcmp(val, "pair") == 0)
-        pair_kicks_ = true;
-      else
-        error->all(FLERR,
-                   "fix sph/astro: kicks '{}' is not one of: particle (each particle kicked by "
-                   "its force on its own step), pair (pair forces integrated pair by pair: "
-                   "momentum conserved to round-off)",
-                   val);
+      if (strcmp(val, "particle") != 0 && strcmp(val, "pair") != 0)
+        error->all(FLERR, "fix sph/astro: kicks '{}' is not one of: particle, pair", val);
+      pair_kicks_ = strcmp(val, "pair") == 0;
     } else if (sentinel_->parse(key, val)) {
       // sentinel, collapse, hshare (sph_astro_sentinel.h)
     } else if (key == "dt") {
@@ -225,7 +218,10 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
     comm_reverse = 6;    // pair impulses and forces
     // [5] active particles this step, [6] occupied bins, [7] particle-updates, [8] woken
     size_vector = 8;
-  }
+  } else if (pair_kicks_)
+    error->all(FLERR,
+               "fix sph/astro: kicks pair needs steps individual (global steps kick "
+               "every pair on the same step)");
   if (xsph_eps_ > 0.0) {    // per-atom output: the XSPH velocity correction
     peratom_flag = 1;
     size_peratom_cols = 3;
