@@ -13,15 +13,16 @@ differences from the global one.
 
 Usage (from anywhere; after source build/env.sh: build/venv's python3 and lmp on the PATH)::
 
-    python3 examples/sedov/compare_steps.py [--n 16] [--np 1] [--limiter N] [--outdir DIR]
+    python3 examples/sedov/compare_steps.py [--n 16] [--np 1] [--limiter N]
+        [--kicks particle|pair] [--outdir DIR]
         [--assert 'l1=0.02,rshock=0.02,nolimiter=0.1,updates=0.30']
 
 ``--assert`` fails (exit 1) unless: the limited individual run's L1(rho) and shock radius
 differ from the global run's by at most ``l1`` and ``rshock`` (relative: |a-b|/|b|), the run
 without the limiter misses the analytic shock radius or conserves energy worse than
 ``nolimiter`` (relative), or stops with an error (it must go visibly wrong: sleeping gas next
-to the blast is heated and cooled over its own long step, and its u can go negative), and the limited run evaluates at most ``updates`` x the global run's
-particle-updates.
+to the blast is heated and cooled over its own long step, and its u can go negative), and the
+limited run evaluates at most ``updates`` x the global run's particle-updates.
 """
 
 import argparse
@@ -39,13 +40,16 @@ from sphastro.runs import parse_sph_log
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 _UPDATES = re.compile(r"fix sph/astro steps individual: (\S+) particle-updates")
-def variants(limiter):
+
+
+def variants(limiter, kicks):
     """global steps, individual steps with the limiter (None: the input's default), without"""
-    limited = ["-var", "steps", "individual"]
+    individual = ["-var", "steps", "individual", "-var", "kicks", kicks]
+    limited = list(individual)
     if limiter is not None:
         limited += ["-var", "limiter", str(limiter)]
     return [("global", ["-var", "steps", "global"]), ("individual", limited),
-            ("no limiter", ["-var", "steps", "individual", "-var", "limiter", "off"])]
+            ("no limiter", individual + ["-var", "limiter", "off"])]
 
 
 def run(name, args, extra, may_fail=False):
@@ -83,12 +87,14 @@ def main(argv=None):
     parser.add_argument("--np", type=int, default=1, help="MPI ranks")
     parser.add_argument("--limiter", type=int, default=None,
                         help="limiter levels of the individual run (default: the input's)")
+    parser.add_argument("--kicks", choices=("particle", "pair"), default="particle",
+                        help="fix sph/astro kicks of the individual runs")
     parser.add_argument("--outdir", default="sedov_compare_steps")
     cli.add_assert_argument(parser, "fail (exit 1) unless l1, rshock, updates <= bound and "
                             "nolimiter >= bound (see the docstring)")
     args = parser.parse_args(argv)
     rows = [run(name, args, extra, may_fail=name == "no limiter")
-            for name, extra in variants(args.limiter)]
+            for name, extra in variants(args.limiter, args.kicks)]
     print(f"Sedov, {rows[0]['N']} particles, {args.np} rank(s), t = 0.1")
     print(f"{'steps':>11} {'R_s offset':>10} {'L1(rho)':>9} {'peak':>7} {'energy err':>11} "
           f"{'updates':>10} {'/particle':>9} {'LAMMPS steps':>12} {'wall s':>7}")
