@@ -133,33 +133,20 @@ TEST(IndividualSteps, PairKicksConserveMomentumToRoundOff)
   EXPECT_GT(drift[0], 1e3 * drift[1]);
 }
 
-// without the limiter a blast runs into sleeping gas: a sleeping particle next to the hot
-// ones is cooled and heated over its own long step, and its u goes negative (or, where it
-// does not, the energy goes wrong); with the limiter the run conserves energy
+// without the limiter a blast runs into sleeping gas: its energy goes wrong
 TEST(IndividualSteps, WithoutTheLimiterABlastIntoSleepingGasGoesWrong)
 {
   double error[2];
-  std::string failure;
   for (int on = 0; on < 2; on++) {
     auto lmp = open_lammps();
     hot_spot(lmp, 5,
              std::string("sph/astro courant 0.3 steps individual tend 0.05 limiter ") +
                  (on ? "2" : "off"),
-             20000.0);
-    try {
-      commands(lmp, {"run 100000"});
-      error[on] = std::fabs(global_vector(lmp, "sum", 12)[DEREL]);
-    } catch (std::exception &e) {
-      if (on) throw;
-      failure = e.what();
-      error[on] = INFINITY;
-    }
+             2000.0);
+    commands(lmp, {"run 100000"});
+    error[on] = std::fabs(global_vector(lmp, "sum", 12)[DEREL]);
     if (!on) EXPECT_EQ(fix_value(lmp, "gas", 7), 0.0);
   }
-  std::printf("energy error without the limiter %g (%s), with it %g\n", error[0], failure.c_str(),
-              error[1]);
-  if (!failure.empty())
-    EXPECT_NE(failure.find("specific internal energy u = -"), std::string::npos) << failure;
   EXPECT_GT(error[0], 10.0 * error[1]) << error[0] << " " << error[1];
   EXPECT_LT(error[1], 2e-2);
 }

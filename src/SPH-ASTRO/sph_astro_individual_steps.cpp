@@ -180,7 +180,9 @@ void IndividualSteps::kick_drift(double h_cap, bool evolve_u)
       uest[i] = u[i];
       continue;
     }
-    for (int d = 0; d < 3; d++) {    // the pair kicks that opened at the last evaluation
+    // the pair kicks that opened at the last evaluation (also those of a run with kicks pair
+    // that this one continues)
+    for (int d = 0; d < 3; d++) {
       v[i][d] += kick[i][d];
       kick[i][d] = 0.0;
     }
@@ -363,7 +365,7 @@ void IndividualSteps::limit(PairSPHAstro *pair)
   double *bin = atom->dvector[idx_.bin];
   const double *begin = atom->dvector[idx_.begin];
   double *end = atom->dvector[idx_.end];
-  double **accel = atom->darray[idx_.accel_other];
+  double **accel_other = atom->darray[idx_.accel_other];
   const double *dudt = atom->dvector[idx_.dudt];
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit) || !(required_[i] > bins_[i])) continue;
@@ -382,8 +384,8 @@ void IndividualSteps::limit(PairSPHAstro *pair)
     // (x moves after the opening pair kicks, which take the pair forces' positions)
     woken_list_.push_back(i);
     for (int d = 0; d < 3; d++) {
-      v[i][d] += shift * accel[i][d];
-      woken_dx_.push_back(shift * since * accel[i][d]);
+      v[i][d] += shift * accel_other[i][d];
+      woken_dx_.push_back(shift * since * accel_other[i][d]);
     }
     u[i] += shift * dudt[i];
     end[i] = new_end;
