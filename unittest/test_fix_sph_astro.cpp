@@ -219,6 +219,50 @@ TEST(FixSPHAstro, SignalViscosityTimestepUsesTheLargestSignalVelocity)
   EXPECT_GT(lmp->update->dt, 0.8 * expected);
 }
 
+// vsig pairs with classic viscosity: dt_i = C h / max_j (c_i + c_j - 3 min(0, v_ij . r_ij / r))
+// over the pairs inside the kernel support (Springel 2005, eqs. 13 and 16), against the pairs
+// summed here by brute force; the default (the classic viscosity's own estimate) differs
+TEST(FixSPHAstro, PairwiseSignalSpeedSetsTheCourantStep)
+{
+  const double C = 0.2, h = 1.2 * std::cbrt(0.25), L = 4.0;
+  double courant[2];
+  for (int pairs = 0; pairs < 2; pairs++) {
+    auto lmp = open_lammps();
+    gas(lmp, "box", 4, PAIR,
+        std::string("sph/astro courant 0.2 force 1.0 vsig ") + (pairs ? "pairs" : "viscosity"));
+    // fast random motion: the approaching pairs' -3 w_ij dominates the sound speeds
+    commands(lmp, {"velocity all create 2.0 4321 dist gaussian", "run 0"});
+    auto *fix = lmp->modify->get_fix_by_id("gas");
+    courant[pairs] = fix->compute_vector(0);
+    if (!pairs) continue;
+    int ncol = 0;
+    const auto *c = static_cast<double *>(lmp->force->pair->extract_peratom("soundspeed", ncol));
+    ASSERT_NE(c, nullptr);
+    const int n = lmp->atom->nlocal;
+    double **x = lmp->atom->x, **v = lmp->atom->v;
+    double expected = INFINITY;
+    for (int i = 0; i < n; i++) {
+      double vmax = 2.0 * c[i];
+      for (int j = 0; j < n; j++) {
+        if (j == i) continue;
+        double d[3], r2 = 0.0, vdotr = 0.0;
+        for (int k = 0; k < 3; k++) {
+          d[k] = x[i][k] - x[j][k];
+          d[k] -= L * std::round(d[k] / L);    // nearest image (support 2h < L/2)
+          r2 += d[k] * d[k];
+          vdotr += (v[i][k] - v[j][k]) * d[k];
+        }
+        if (r2 >= 4.0 * h * h) continue;
+        const double w = vdotr / std::sqrt(r2);
+        vmax = std::max(vmax, c[i] + c[j] - 3.0 * std::min(w, 0.0));
+      }
+      expected = std::min(expected, C * h / vmax);
+    }
+    EXPECT_NEAR(courant[pairs], expected, 1e-12 * expected);
+  }
+  EXPECT_GT(std::fabs(courant[0] / courant[1] - 1.0), 0.05) << courant[0] << " " << courant[1];
+}
+
 TEST(FixSPHAstro, TimestepIsTheSmallestOfItsThreeCriteria)
 {
   // an expanding hot ball: its outer particles cool (du/dt < 0), so dt_u is
@@ -472,6 +516,7 @@ TEST_F(BadInput, FixArguments)
   expect_error("fix gas all sph/astro dtmin 1 dtmax 0.1", "dtmin 1 is larger than dtmax 0.1");
   expect_error("fix gas all sph/astro speed 1", "unknown keyword 'speed'");
   expect_error("fix gas all sph/astro thermal heat", "thermal 'heat' is not one of");
+  expect_error("fix gas all sph/astro vsig max", "vsig 'max' is not one of: viscosity, pairs");
   expect_error("fix gas all sph/astro courant", "Illegal fix sph/astro courant");
 }
 

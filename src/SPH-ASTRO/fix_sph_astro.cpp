@@ -65,40 +65,8 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), state_(new StateIndex()), entropy_index_(new EntropyIndex()),
     continuity_index_(new ContinuityIndex()), sentinel_(new StabilitySentinel(lmp))
 {
-  courant_ = 0.3;
-  force_factor_ = 0.3;
-  energy_factor_ = 0.3;
-  cond_factor_ = 0.1;
-  condu_factor_ = 0.5;
-  dtmax_ = 0.0;
-  dtmin_ = 0.0;
-  tend_ = -1.0;
-  adaptive_ = true;
-  stopped_at_tend_ = false;
-  pair_ = nullptr;
-  hfix_ = nullptr;
-  evolve_u_ = true;
-  entropy_ = false;
-  entropy_flag_ = 0;
-  entropy_needs_init_ = true;
-  continuity_ = false;
-  density_needs_init_ = true;
-  predicted_step_ = -1;
-  state_hash_ = 0;
-  dt_pending_ = false;
-  user_dt_ = 0.0;
-  xsph_eps_ = 0.0;
-  xsph_ = nullptr;
-  xsph_nmax_ = 0;
-  last_dt_cv_ = 0.0;
-  last_dt_force_ = 0.0;
-  last_dt_energy_ = 0.0;
-  last_dt_cond_ = 0.0;
-  last_limiting_atom_ = 0;
-  steps_ = nullptr;
-  limiter_levels_ = 1;
-  pair_kicks_ = false;
   bool individual = false;
+  std::string vsig;
 
   time_integrate = 1;
   restart_global = 1;
@@ -119,6 +87,10 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
       courant_ = utils::numeric(FLERR, val, false, lmp);
       if (!(courant_ > 0.0) || courant_ > 1.0)
         error->all(FLERR, "fix sph/astro: courant = {} must be in (0, 1]", val);
+    } else if (key == "vsig") {
+      vsig = val;
+      if (vsig != "viscosity" && vsig != "pairs")
+        error->all(FLERR, "fix sph/astro: vsig '{}' is not one of: viscosity, pairs", val);
     } else if (key == "force") {
       force_factor_ = utils::numeric(FLERR, val, false, lmp);
       if (!(force_factor_ > 0.0) || force_factor_ > 1.0)
@@ -190,11 +162,12 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
       else
         error->all(FLERR, "fix sph/astro: dt '{}' is not one of: adaptive, fixed", val);
     } else
-      error->all(FLERR,
-                 "fix sph/astro: unknown keyword '{}'; allowed: thermal, courant, force, energy, "
-                 "conduction, conductivity, xsph, dtmax, dtmin, tend, dt, steps, limiter, "
-                 "kicks, sentinel, collapse, hshare",
-                 key);
+      error->all(
+          FLERR,
+          "fix sph/astro: unknown keyword '{}'; allowed: thermal, courant, vsig, force, energy, "
+          "conduction, conductivity, xsph, dtmax, dtmin, tend, dt, steps, limiter, "
+          "kicks, sentinel, collapse, hshare",
+          key);
     iarg += 2;
   }
   if (atom->rho_flag || atom->esph_flag)
@@ -204,6 +177,8 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
                "is d_rho, d_h, d_u, ...)");
   if (!atom->tag_enable)
     error->all(FLERR, "fix sph/astro needs atom IDs (atom_modify id yes) to report atoms");
+  // default with steps individual: v_sig = max_j (c_i + c_j - 3 w_ij) (Springel 2005, eq. 16)
+  courant_pairs_ = vsig.empty() ? individual : vsig == "pairs";
   if (dtmin_ > 0.0 && dtmax_ > 0.0 && dtmin_ > dtmax_)
     error->all(FLERR, "fix sph/astro: dtmin {} is larger than dtmax {}", dtmin_, dtmax_);
   if (individual) {
@@ -287,6 +262,7 @@ void FixSPHAstro::init()
   if (!utils::strmatch(update->integrate_style, "^verlet"))
     error->all(FLERR, "fix sph/astro: run_style {} is not supported; use run_style verlet",
                update->integrate_style);
+  pair_->set_courant_pairs(courant_pairs_);
   evolve_u_ = pair_->options().eos.uses_energy();
   if (entropy_) {
     if (pair_->options().eos.type != EOSType::IDEAL)

@@ -75,57 +75,60 @@ class FixSPHAstro : public Fix {
   double reference_energy(const std::string &compute_id, double current);
 
  protected:
-  double courant_;          // C in dt = C h / (c + h|div v| + 1.2 (alpha c + beta h|div v|))
-  double force_factor_;     // C_f in dt = C_f sqrt(h / |a|)
-  double energy_factor_;    // C_u in dt = C_u u / |du/dt| (where du/dt < 0)
-  double cond_factor_;      // C_k in dt = C_k rho h^2 / kappa (pair conduction KAPPA)
+  // C in dt = C h / v_sig with v_sig = max_j (c_i + c_j - beta w_ij) (vsig pairs, or signal
+  // viscosity) or c + h|div v| + 1.2 (alpha c + beta h|div v|) (classic viscosity)
+  double courant_ = 0.3;
+  bool courant_pairs_ = false;    // vsig pairs
+  double force_factor_ = 0.3;     // C_f in dt = C_f sqrt(h / |a|)
+  double energy_factor_ = 0.3;    // C_u in dt = C_u u / |du/dt| (where du/dt < 0)
+  double cond_factor_ = 0.1;      // C_k in dt = C_k rho h^2 / kappa (pair conduction KAPPA)
   // C_a in dt = C_a / sum_j k_ij, the rate of the artificial conductivity (pair conductivity)
-  double condu_factor_;
-  double dtmax_;    // 0: no upper bound
-  double dtmin_;    // 0: no lower bound (a step below it is an error)
-  double tend_;     // < 0: no end time
-  bool adaptive_;
-  bool stopped_at_tend_;
+  double condu_factor_ = 0.5;
+  double dtmax_ = 0.0;    // 0: no upper bound
+  double dtmin_ = 0.0;    // 0: no lower bound (a step below it is an error)
+  double tend_ = -1.0;    // < 0: no end time
+  bool adaptive_ = true;
+  bool stopped_at_tend_ = false;
 
   SPHAstro::StateIndex *state_;
-  class PairSPHAstro *pair_;
-  class FixSPHAstroH *hfix_;    // variable h: advanced in the drift
-  bool evolve_u_;
-  bool entropy_;
-  int entropy_flag_;    // extract("entropy")
+  class PairSPHAstro *pair_ = nullptr;
+  class FixSPHAstroH *hfix_ = nullptr;    // variable h: advanced in the drift
+  bool evolve_u_ = true;
+  bool entropy_ = false;
+  int entropy_flag_ = 0;    // extract("entropy")
   // A from u (entropy), rho from one summation (density continuity) at the next force
   // evaluation: pair sph/astro is told at init, and has done it by setup
-  bool entropy_needs_init_;
+  bool entropy_needs_init_ = true;
   SPHAstro::EntropyIndex *entropy_index_;
   // pair sph/astro density continuity: rho is integrated like u, with the prediction d_rhoest
-  bool continuity_;
-  bool density_needs_init_;
+  bool continuity_ = false;
+  bool density_needs_init_ = true;
   SPHAstro::ContinuityIndex *continuity_index_;
   bool pair_has_continuity() const;
 
   // restart state
-  bigint predicted_step_;    // step at which d2_vest/d_uest hold predictions
-  uint64_t state_hash_;      // hash of v and u (and rho with density continuity) when
-                             // the last run ended
+  bigint predicted_step_ = -1;    // step at which d2_vest/d_uest hold predictions
+  uint64_t state_hash_ = 0;       // hash of v and u (and rho with density continuity) when
+                                  // the last run ended
   std::map<std::string, double> reference_energy_;
-  bool dt_pending_;    // first dt of a run: set once all setup forces are in
-  double user_dt_;     // with dt fixed: the step to restore after a tend clip
+  bool dt_pending_ = false;    // first dt of a run: set once all setup forces are in
+  double user_dt_ = 0.0;       // with dt fixed: the step to restore after a tend clip
 
   // XSPH: positions drift with v + eps sum_j m_j / rho_ij (v_j - v_i) W_ij; the correction is
   // computed after each force evaluation over a full neighbour list
-  double xsph_eps_;    // 0: off (no list, no pass)
-  double **xsph_;      // per-atom correction (owned atoms), also the fix's per-atom output
-  int xsph_nmax_;
+  double xsph_eps_ = 0.0;      // 0: off (no list, no pass)
+  double **xsph_ = nullptr;    // per-atom correction (owned atoms), also the fix's per-atom output
+  int xsph_nmax_ = 0;
   void xsph_correction();
 
-  double last_dt_cv_, last_dt_force_, last_dt_energy_, last_dt_cond_;
-  tagint last_limiting_atom_;
+  double last_dt_cv_ = 0.0, last_dt_force_ = 0.0, last_dt_energy_ = 0.0, last_dt_cond_ = 0.0;
+  tagint last_limiting_atom_ = 0;
   std::string limits() const;    // the limiting atom and its criteria, for messages
 
   // individual timesteps (steps individual; sph_astro_individual_steps.h), null: global
-  SPHAstro::IndividualSteps *steps_;
-  bool pair_kicks_;       // individual steps: pair forces integrated pair by pair
-  int limiter_levels_;    // the limiter: no step more than 2^levels x a neighbour's (0: off)
+  SPHAstro::IndividualSteps *steps_ = nullptr;
+  bool pair_kicks_ = false;    // individual steps: pair forces integrated pair by pair
+  int limiter_levels_ = 1;     // the limiter: no step more than 2^levels x a neighbour's (0: off)
   std::vector<double> wanted_;
   // the timestep criteria of atom i: Courant, force, energy, conduction (infinite where one
   // does not limit it)

@@ -247,7 +247,7 @@ void PairSPHAstro::grow_fields()
 {
   const PairOptions &o = *opt_;
   fields_->grow(memory, atom->nmax,
-                {scheme_->curl, o.balsara, o.signal_viscosity(), o.reconstruction(),
+                {scheme_->curl, o.balsara, o.tracks_signal(), o.reconstruction(),
                  o.artificial_conductivity(), o.pressure_geometric || o.pressure_energy,
                  o.pressure_energy, o.pressure_energy && gradh(), o.physical_conduction()});
 }
@@ -503,7 +503,7 @@ const double *PairSPHAstro::neighbour_counts()
 double PairSPHAstro::courant_signal_speed(int i) const
 {
   const Fields &f = *fields_;
-  if (opt_->signal_viscosity()) return f.vsigmax[i];
+  if (opt_->tracks_signal()) return f.vsigmax[i];
   const double a = alpha_atom_ ? alpha_atom_[i] : opt_->alpha;
   const double b = alpha_atom_ ? opt_->beta_factor() * a : opt_->beta;
   return viscous_signal_speed(f.soundspeed[i], atom->dvector[state_->h][i], f.divv[i], a, b);
@@ -517,6 +517,11 @@ void PairSPHAstro::xsph_correction(double eps, double **out)
   if (ctx.newton) reverse({{nullptr, out, 3, false}});
   for (int i = 0; i < atom->nlocal; i++)
     for (int d = 0; d < 3; d++) out[i][d] *= eps;
+}
+
+void PairSPHAstro::set_courant_pairs(bool on)
+{
+  opt_->courant_pairs = on;
 }
 
 double PairSPHAstro::conductivity_rate(int i) const
@@ -554,7 +559,7 @@ void *PairSPHAstro::extract_peratom(const char *name, int &ncol)
     return counts_step_ == computed_step_ ? (void *) f.nneigh : nullptr;
   if (strcmp(name, "omega") == 0) return (void *) f.omega;
   if (strcmp(name, "curlv") == 0) return (void *) (scheme_->curl ? f.curlv : nullptr);
-  if (strcmp(name, "vsigmax") == 0) return (void *) (o.signal_viscosity() ? f.vsigmax : nullptr);
+  if (strcmp(name, "vsigmax") == 0) return (void *) (o.tracks_signal() ? f.vsigmax : nullptr);
   if (strcmp(name, "balsara") == 0) return (void *) (o.balsara ? f.balsara : nullptr);
   if (strcmp(name, "condrate") == 0)
     return (void *) (o.artificial_conductivity() ? f.condrate : nullptr);

@@ -91,8 +91,12 @@ class PairSPHAstro : public Pair {
   // of its own (collective: call on all ranks, as computes are)
   const double *neighbour_counts();
   // the signal speed of the Courant criterion of atom i, dt = C h_i / v: max_j v_sig,ij with
-  // signal viscosity, else c + h |div v| + 1.2 (alpha c + beta h |div v|)
+  // signal viscosity or set_courant_pairs(true), else c + h |div v| + 1.2 (alpha c + beta h
+  // |div v|)
   double courant_signal_speed(int i) const;
+  // fix sph/astro vsig pairs: keep max_j v_sig,ij for the Courant criterion whatever the
+  // viscosity (PairOptions::tracks_signal)
+  void set_courant_pairs(bool on);
   // the artificial conductivity's diffusion rate sum_j k_ij of atom i (0 without it)
   double conductivity_rate(int i) const;
   // fix sph/astro xsph: dv_i = eps sum_j m_j / rho_ij (v_j - v_i) W(r_ij, h_ij) of the owned

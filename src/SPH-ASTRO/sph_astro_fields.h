@@ -37,7 +37,7 @@ struct Fields {
   double **dcurl = nullptr;        // sums for div v and curl v: v_ij . grad W, v_ij x grad W
   double *curlv = nullptr;         // |curl v|
   double *balsara = nullptr;       // Balsara factor of this step
-  double *vsigmax = nullptr;       // signal viscosity: max_j v_sig,ij
+  double *vsigmax = nullptr;       // max_j v_sig,ij (PairOptions::tracks_signal)
   double **vgsum = nullptr;        // reconstruction: the sums M, G of grad v = G M^-1
   double **vgrad = nullptr;        // reconstruction: symmetric grad v and spacing Delta
   double *condrate = nullptr;      // artificial conductivity: sum_j m_j k_ij |dW/dr| r

@@ -173,7 +173,7 @@ void ForceEvaluation::force()
   if (ctx_.newton)
     exchange_.reverse({{s.energy ? ctx_.dudt : nullptr, nullptr, 1, false},
                        {f.vdotgradw, nullptr, 1, false},
-                       {s.signal ? f.vsigmax : nullptr, nullptr, 1, true},
+                       {s.track_signal ? f.vsigmax : nullptr, nullptr, 1, true},
                        {s.alpha_u > 0.0 ? f.condrate : nullptr, nullptr, 1, false}});
   finish_force(ctx_, s);
   if (s.energy)

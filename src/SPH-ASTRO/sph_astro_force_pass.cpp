@@ -92,7 +92,7 @@ namespace {
         force[j][2] -= dz * c.fpair;
         f.vdotgradw[j] += c.vgw_j;
         if (s.energy) dudt[j] += c.heat_j;
-        if (s.signal && c.vsig > f.vsigmax[j]) f.vsigmax[j] = c.vsig;
+        if (s.track_signal && c.vsig > f.vsigmax[j]) f.vsigmax[j] = c.vsig;
         if (LEVEL >= FORCE_COMMON && s.alpha_u > 0.0) f.condrate[j] += c.crate_j;
       }
       if (ctx.pair_forces) ctx.pair_forces->push_back({i, update_j ? j : ~j, c.fpair});
@@ -106,7 +106,7 @@ namespace {
       force[i][2] += own.fz;
       f.vdotgradw[i] += own.vgw;
       if (s.energy) dudt[i] += own.heat;
-      if (s.signal && own.vsig > f.vsigmax[i]) f.vsigmax[i] = own.vsig;
+      if (s.track_signal && own.vsig > f.vsigmax[i]) f.vsigmax[i] = own.vsig;
       if (LEVEL >= FORCE_COMMON && s.alpha_u > 0.0) f.condrate[i] += own.crate;
     }
   };
@@ -121,6 +121,8 @@ ForceSettings force_settings(const PairOptions &o, bool gradh, bool per_particle
                                  : PressureForm::STANDARD;
   s.viscosity = o.has_viscosity();
   s.signal = o.signal_viscosity();
+  s.track_signal = o.tracks_signal();
+  s.signal_beta = o.signal_beta();
   s.reconstruct = o.reconstruction();
   s.balsara = o.balsara;
   s.alpha_per_particle = per_particle_alpha;
@@ -143,7 +145,7 @@ void force_pass(const PassContext &ctx, const ForceSettings &s, bool two_h, bool
   for (int i = 0; i < nzero; i++) {
     f.vdotgradw[i] = 0.0;
     if (s.energy) ctx.dudt[i] = 0.0;
-    if (signal) f.vsigmax[i] = 2.0 * f.soundspeed[i];    // at least the pair with itself
+    if (s.track_signal) f.vsigmax[i] = 2.0 * f.soundspeed[i];    // the pair with itself
     if (s.alpha_u > 0.0) f.condrate[i] = 0.0;
   }
   ForceSettings settings = s;

@@ -158,6 +158,8 @@ struct ForceSettings {
   PressureForm pressure = PressureForm::STANDARD;
   bool viscosity = true;              // artificial viscosity on
   bool signal = false;                // signal-velocity form (else classic)
+  bool track_signal = false;          // max_j v_sig,ij wanted (signal form or the Courant's)
+  double signal_beta = 3.0;           // beta of v_sig = c_i + c_j - beta w_ij
   bool reconstruct = false;           // on velocities reconstructed to the pair midpoint
   bool balsara = false;               // shear limiter factors in ForceParticle::shear
   bool alpha_per_particle = false;    // a switch sets alpha; beta = beta_factor x alpha
@@ -190,7 +192,7 @@ struct ForceContribution {
   double fpair;
   double vgw_i, vgw_j;      // sum_j m_j v_ij . grad_i W (pressure-energy: weights m_j (e_j - C_i))
   double heat_i, heat_j;    // dissipative heating (and the geometric P dV work)
-  double vsig;              // signal velocity of the pair (signal viscosity)
+  double vsig;              // signal velocity of the pair (when tracked, else 0)
   double crate_i, crate_j;    // conductivity diffusion rates m_j k, m_i k
 };
 
@@ -234,8 +236,9 @@ iact_force(const ForceSettings &s, const ForceParticle &pi, const ForceParticle 
 
   double visc = 0.0;
   out.vsig = 0.0;
+  if ((viscosity && signal) || s.track_signal)
+    out.vsig = signal_velocity(vdotr / r, pi.c, pj.c, s.signal_beta);
   if (viscosity) {
-    if (signal) out.vsig = signal_velocity(vdotr / r, pi.c, pj.c, s.beta);
     double vdotr_visc = vdotr;
     if (reconstruct)
       vdotr_visc = reconstructed_vdotr(

@@ -43,6 +43,9 @@ struct PairOptions {
   bool symmetrise_kernel = false;     // (W(h_i) + W(h_j))/2 instead of W(h_ij)
   bool pressure_geometric = false;    // 2 sqrt(P_i P_j)/(rho_i rho_j)
   bool pressure_energy = false;       // formulation pressure-energy (Hopkins 2013)
+  // set by fix sph/astro vsig pairs, not by pair_style: the Courant criterion takes
+  // max_j v_sig,ij also with classic or no viscosity
+  bool courant_pairs = false;
 
   // parse pair_style arguments (a repeated pair_style starts from the defaults); errors name
   // the keyword, the value and what is allowed
@@ -56,6 +59,10 @@ struct PairOptions {
 
   bool has_viscosity() const { return viscosity != ViscosityForm::NONE; }
   bool signal_viscosity() const { return viscosity == ViscosityForm::SIGNAL; }
+  // max_j v_sig,ij = max_j (c_i + c_j - beta w_ij) kept per particle, with the beta of the
+  // signal viscosity, else 3 (Springel 2005, MNRAS 364, 1105, eqs. 13 and 16)
+  bool tracks_signal() const { return signal_viscosity() || courant_pairs; }
+  double signal_beta() const { return signal_viscosity() ? beta : 3.0; }
   bool reconstruction() const { return has_viscosity() && reconstruct; }
   // the artificial conductivity acts only where u is evolved (ideal gas)
   bool artificial_conductivity() const { return conductivity > 0.0 && eos.uses_energy(); }
