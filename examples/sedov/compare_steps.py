@@ -6,7 +6,8 @@
 Runs examples/sedov/in.sedov (background pressure 1e-6: the blast runs into gas whose own
 timestep is long) three times at the same resolution: every particle at the smallest step
 (``steps global``), individual steps with the timestep limiter (``steps individual``), and
-individual steps without it (``limiter off``). Prints for each the shock radius offset (binned
+individual steps without it (``limiter off``), all with the same Courant signal speed
+(``--vsig``, fix sph/astro vsig; pairs by default, as individual steps have it). Prints for each the shock radius offset (binned
 density peak) and L1(rho) against the self-similar solution, the peak density, the energy
 error, the particle-updates, the LAMMPS steps and the wall time; then the individual runs'
 differences from the global one.
@@ -14,7 +15,7 @@ differences from the global one.
 Usage (from anywhere; after source build/env.sh: build/venv's python3 and lmp on the PATH)::
 
     python3 examples/sedov/compare_steps.py [--n 16] [--np 1] [--limiter N]
-        [--kicks particle|pair] [--outdir DIR]
+        [--kicks particle|pair] [--vsig pairs|viscosity] [--outdir DIR]
         [--assert 'l1=0.02,rshock=0.02,nolimiter=0.1,updates=0.30']
 
 ``--assert`` fails (exit 1) unless: the limited individual run's L1(rho) and shock radius
@@ -43,13 +44,14 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 _UPDATES = re.compile(r"fix sph/astro steps individual: (\S+) particle-updates")
 
 
-def variants(limiter, kicks):
-    """global steps, individual steps with the limiter (None: the input's default), without"""
-    individual = ["-var", "steps", "individual", "-var", "kicks", kicks]
+def variants(limiter, kicks, vsig):
+    """global steps, individual steps with the limiter (None: the input's default), without;
+    all three with the Courant signal speed vsig"""
+    individual = ["-var", "steps", "individual", "-var", "kicks", kicks, "-var", "vsig", vsig]
     limited = list(individual)
     if limiter is not None:
         limited += ["-var", "limiter", str(limiter)]
-    return [("global", ["-var", "steps", "global"]), ("individual", limited),
+    return [("global", ["-var", "steps", "global", "-var", "vsig", vsig]), ("individual", limited),
             ("no limiter", individual + ["-var", "limiter", "off"])]
 
 
@@ -90,12 +92,15 @@ def main(argv=None):
                         help="limiter levels of the individual run (default: the input's)")
     parser.add_argument("--kicks", choices=("particle", "pair"), default="particle",
                         help="fix sph/astro kicks of the individual runs")
+    parser.add_argument("--vsig", choices=("pairs", "viscosity"), default="pairs",
+                        help="fix sph/astro vsig of all three runs (default pairs, the default "
+                        "of individual steps)")
     parser.add_argument("--outdir", default="sedov_compare_steps")
     cli.add_assert_argument(parser, "fail (exit 1) unless l1, rshock, updates <= bound and "
                             "nolimiter >= bound (see the docstring)")
     args = parser.parse_args(argv)
     rows = [run(name, args, extra, may_fail=name == "no limiter")
-            for name, extra in variants(args.limiter, args.kicks)]
+            for name, extra in variants(args.limiter, args.kicks, args.vsig)]
     print(f"Sedov, {rows[0]['N']} particles, {args.np} rank(s), t = 0.1")
     print(f"{'steps':>11} {'R_s offset':>10} {'L1(rho)':>9} {'peak':>7} {'energy err':>11} "
           f"{'updates':>10} {'/particle':>9} {'LAMMPS steps':>12} {'wall s':>7}")
