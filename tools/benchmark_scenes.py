@@ -16,7 +16,11 @@ run: the h iteration with grad-h terms, skin 0.5 h), ``sedov16``, ``sedov22``, `
 n 16, MSM gravity, to t = 0.8), the same scenes with individual timesteps (``sedov16i``,
 ``sedov22i``, ``sedov35i``, ``noh24i``, ``evrardi``: ``-var steps individual``; their updates
 are the particle-updates fix sph/astro counts; ``sedov16i2``, ``sedov22i2``, ``sedov35i2`` with
-``-var limiter 2``), and ``swift35`` and ``swift56``: SWIFT's Sedov at 42 875 and
+``-var limiter 2``; ``sedov16p``, ``sedov22p``, ``sedov35p``: global steps with the Courant
+signal speed that individual steps take by default, ``-var vsig pairs``; ``sedov16c``,
+``sedov22c``, ``sedov35c`` and, with individual steps,
+``sedov16ic``, ``sedov22ic``, ``sedov35ic`` with SWIFT's Courant criterion, ``-var vsig pairs
+-var courant 0.4``), and ``swift35`` and ``swift56``: SWIFT's Sedov at 42 875 and
 175 616 particles (``--swift-bin``: the swift executable, built with SPHENIX and the cubic
 spline as its repository describes; ``--swift-dir``: a folder with ``swift_sedov.yml`` and
 ``swift_sedov_ic.py ``; 2 threads, ``--hydro --limiter``). SWIFT is never part of this
@@ -76,16 +80,25 @@ for _name in ("sedov16", "sedov22", "sedov35", "noh24", "evrard"):
 for _name in ("sedov16", "sedov22", "sedov35"):
     _script, _vars = SCENES[_name]
     SCENES[_name + "i2"] = (_script, dict(_vars, steps="individual", limiter=2))
+# Sedov with global steps and the Courant signal speed of individual steps (vsig pairs):
+# row name + "p"; with SWIFT's Courant criterion (fix sph/astro vsig pairs courant 0.4: dt =
+# 0.4 h / max_j v_sig,ij, which is SWIFT's CFL 0.1 with its h = H / 1.825742 for the cubic
+# spline of support H = 2h): global steps row name + "c", individual steps + "ic"
+for _name in ("sedov16", "sedov22", "sedov35"):
+    _script, _vars = SCENES[_name]
+    SCENES[_name + "p"] = (_script, dict(_vars, vsig="pairs"))
+    SCENES[_name + "c"] = (_script, dict(_vars, vsig="pairs", courant=0.4))
+    SCENES[_name + "ic"] = (_script, dict(_vars, vsig="pairs", courant=0.4, steps="individual"))
 SWIFT_ROWS = {"swift35": 35, "swift56": 56}
-ORDER = ["box1e4", "box1e5", "box1e6", "box1e5i", "sedov16", "sedov16i", "sedov16i2", "sedov22",
-         "sedov22i", "sedov22i2", "sedov35", "sedov35i", "sedov35i2", "noh24", "noh24i", "evrard",
-         "evrardi", "swift35", "swift56"]
+ORDER = ["box1e4", "box1e5", "box1e6", "box1e5i"] + [
+    s + v for s in ("sedov16", "sedov22", "sedov35") for v in ("", "p", "i", "i2", "c", "ic")] + [
+    "noh24", "noh24i", "evrard", "evrardi", "swift35", "swift56"]
 
 _LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", re.M)
 _SEARCH = re.compile(r"pair sph/astro neighbour search: .*?per particle: (\S+) half-list "
                      r"entries, (\S+) gather-row entries, (\S+) neighbours inside the kernel "
                      r"support, (\S+) ghost atoms", re.S)
-_RSS = re.compile(r"RSS_KB (\d+)")    # (the ranks' lines may interleave)
+_RSS = re.compile(r"RSS_KB (\d+)")
 _UPDATES = re.compile(r"fix sph/astro steps individual: (\S+) particle-updates")
 
 
@@ -94,9 +107,11 @@ def run_lammps(name, np_ranks, outdir, env):
     work = os.path.join(outdir, name)
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
-    cmd = ["mpirun", "--oversubscribe", "-np", str(np_ranks), "/usr/bin/time", "-f",
-           "SPHASTRO_RSS_KB %M", "lmp", "-in", os.path.join(EX, script), "-log", "log.lammps",
-           "-screen", "none"]
+    # (each rank appends its line to one file: one short write each, so lines do not interleave
+    # as the ranks' stderr can)
+    cmd = ["mpirun", "--oversubscribe", "-np", str(np_ranks), "/usr/bin/time", "-a", "-o",
+           "rss_kb.txt", "-f", "SPHASTRO_RSS_KB %M", "lmp", "-in", os.path.join(EX, script),
+           "-log", "log.lammps", "-screen", "none"]
     if np_ranks == 1:
         cmd = cmd[4:]
     for key, value in variables.items():
@@ -111,7 +126,8 @@ def run_lammps(name, np_ranks, outdir, env):
     with open(os.path.join(work, "log.lammps"), encoding="utf-8", errors="replace") as f:
         log = f.read()
     loops = _LOOP.findall(log)
-    rss = [int(v) for v in _RSS.findall(proc.stderr)]
+    with open(os.path.join(work, "rss_kb.txt")) as f:
+        rss = [int(v) for v in _RSS.findall(f.read())]
     row = {"name": name, "ranks": np_ranks, "wall": wall,
            "loop": sum(float(l[0]) for l in loops), "steps": sum(int(l[2]) for l in loops),
            "N": int(loops[-1][3]) if loops else 0, "rss_mb": sum(rss) / 1024.0}

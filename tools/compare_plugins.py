@@ -40,6 +40,8 @@ SCENES = {
     "sod_fixed_h": ("examples/sod/in.sod", ["-var", "hmode", "fixed", "-var", "hfact", "1.5"]),
     # Sedov blast, 16 384 particles, variable h over a wide range (ghost cutoff widened)
     "sedov16": ("examples/sedov/in.sedov", ["-var", "n", "16"]),
+    # the same with individual timesteps (fix sph/astro steps individual)
+    "sedov16i": ("examples/sedov/in.sedov", ["-var", "n", "16", "-var", "steps", "individual"]),
 }
 
 _LOOP = re.compile(r"^Loop time of (\S+) on", re.M)
