@@ -16,8 +16,9 @@ run: the h iteration with grad-h terms, skin 0.5 h), ``sedov16``, ``sedov22``, `
 n 16, MSM gravity, to t = 0.8), the same scenes with individual timesteps (``sedov16i``,
 ``sedov22i``, ``sedov35i``, ``noh24i``, ``evrardi``: ``-var steps individual``; their updates
 are the particle-updates fix sph/astro counts; ``sedov16i2``, ``sedov22i2``, ``sedov35i2`` with
-``-var limiter 2``; ``sedov16p``, ``sedov22p``, ``sedov35p``: global steps with the Courant
-signal speed that individual steps take by default, ``-var vsig pairs``; ``sedov16c``,
+``-var limiter 2``; ``sedov16p``, ``sedov22p``, ``sedov35p`` and, with individual steps,
+``sedov16ip``, ``sedov22ip``, ``sedov35ip``: the Courant signal speed over the neighbours,
+``-var vsig pairs``; ``sedov16c``,
 ``sedov22c``, ``sedov35c`` and, with individual steps,
 ``sedov16ic``, ``sedov22ic``, ``sedov35ic`` with SWIFT's Courant criterion, ``-var vsig pairs
 -var courant 0.4``), and ``swift35`` and ``swift56``: SWIFT's Sedov at 42 875 and
@@ -80,18 +81,20 @@ for _name in ("sedov16", "sedov22", "sedov35", "noh24", "evrard"):
 for _name in ("sedov16", "sedov22", "sedov35"):
     _script, _vars = SCENES[_name]
     SCENES[_name + "i2"] = (_script, dict(_vars, steps="individual", limiter=2))
-# Sedov with global steps and the Courant signal speed of individual steps (vsig pairs):
-# row name + "p"; with SWIFT's Courant criterion (fix sph/astro vsig pairs courant 0.4: dt =
+# Sedov with the Courant signal speed taken over the neighbours (vsig pairs): global steps
+# row name + "p", individual steps + "ip"; with SWIFT's Courant criterion (fix sph/astro vsig pairs courant 0.4: dt =
 # 0.4 h / max_j v_sig,ij, which is SWIFT's CFL 0.1 with its h = H / 1.825742 for the cubic
 # spline of support H = 2h): global steps row name + "c", individual steps + "ic"
 for _name in ("sedov16", "sedov22", "sedov35"):
     _script, _vars = SCENES[_name]
     SCENES[_name + "p"] = (_script, dict(_vars, vsig="pairs"))
+    SCENES[_name + "ip"] = (_script, dict(_vars, vsig="pairs", steps="individual"))
     SCENES[_name + "c"] = (_script, dict(_vars, vsig="pairs", courant=0.4))
     SCENES[_name + "ic"] = (_script, dict(_vars, vsig="pairs", courant=0.4, steps="individual"))
 SWIFT_ROWS = {"swift35": 35, "swift56": 56}
 ORDER = ["box1e4", "box1e5", "box1e6", "box1e5i"] + [
-    s + v for s in ("sedov16", "sedov22", "sedov35") for v in ("", "p", "i", "i2", "c", "ic")] + [
+    s + v for s in ("sedov16", "sedov22", "sedov35")
+    for v in ("", "p", "i", "ip", "i2", "c", "ic")] + [
     "noh24", "noh24i", "evrard", "evrardi", "swift35", "swift56"]
 
 _LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", re.M)

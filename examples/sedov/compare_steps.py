@@ -7,7 +7,7 @@ Runs examples/sedov/in.sedov (background pressure 1e-6: the blast runs into gas 
 timestep is long) three times at the same resolution: every particle at the smallest step
 (``steps global``), individual steps with the timestep limiter (``steps individual``), and
 individual steps without it (``limiter off``), all with the same Courant signal speed
-(``--vsig``, fix sph/astro vsig; pairs by default, as individual steps have it). Prints for each the shock radius offset (binned
+(``--vsig``, fix sph/astro vsig; viscosity by default, as the fix). Prints for each the shock radius offset (binned
 density peak) and L1(rho) against the self-similar solution, the peak density, the energy
 error, the particle-updates, the LAMMPS steps and the wall time; then the individual runs'
 differences from the global one.
@@ -15,7 +15,7 @@ differences from the global one.
 Usage (from anywhere; after source build/env.sh: build/venv's python3 and lmp on the PATH)::
 
     python3 examples/sedov/compare_steps.py [--n 16] [--np 1] [--limiter N]
-        [--kicks particle|pair] [--vsig pairs|viscosity] [--outdir DIR]
+        [--kicks particle|pair] [--vsig viscosity|pairs] [--outdir DIR]
         [--assert 'l1=0.02,rshock=0.02,nolimiter=0.1,updates=0.30']
 
 ``--assert`` fails (exit 1) unless: the limited individual run's L1(rho) and shock radius
@@ -92,9 +92,9 @@ def main(argv=None):
                         help="limiter levels of the individual run (default: the input's)")
     parser.add_argument("--kicks", choices=("particle", "pair"), default="particle",
                         help="fix sph/astro kicks of the individual runs")
-    parser.add_argument("--vsig", choices=("pairs", "viscosity"), default="pairs",
-                        help="fix sph/astro vsig of all three runs (default pairs, the default "
-                        "of individual steps)")
+    parser.add_argument("--vsig", choices=("viscosity", "pairs"), default="viscosity",
+                        help="fix sph/astro vsig of all three runs (default viscosity, the "
+                        "fix's default)")
     parser.add_argument("--outdir", default="sedov_compare_steps")
     cli.add_assert_argument(parser, "fail (exit 1) unless l1, rshock, updates <= bound and "
                             "nolimiter >= bound (see the docstring)")

@@ -66,7 +66,6 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
     continuity_index_(new ContinuityIndex()), sentinel_(new StabilitySentinel(lmp))
 {
   bool individual = false;
-  std::string vsig;
 
   time_integrate = 1;
   restart_global = 1;
@@ -88,9 +87,9 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
       if (!(courant_ > 0.0) || courant_ > 1.0)
         error->all(FLERR, "fix sph/astro: courant = {} must be in (0, 1]", val);
     } else if (key == "vsig") {
-      vsig = val;
-      if (vsig != "viscosity" && vsig != "pairs")
+      if (strcmp(val, "viscosity") != 0 && strcmp(val, "pairs") != 0)
         error->all(FLERR, "fix sph/astro: vsig '{}' is not one of: viscosity, pairs", val);
+      courant_pairs_ = strcmp(val, "pairs") == 0;
     } else if (key == "force") {
       force_factor_ = utils::numeric(FLERR, val, false, lmp);
       if (!(force_factor_ > 0.0) || force_factor_ > 1.0)
@@ -177,8 +176,6 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
                "is d_rho, d_h, d_u, ...)");
   if (!atom->tag_enable)
     error->all(FLERR, "fix sph/astro needs atom IDs (atom_modify id yes) to report atoms");
-  // default with steps individual: v_sig = max_j (c_i + c_j - 3 w_ij) (Springel 2005, eq. 16)
-  courant_pairs_ = vsig.empty() ? individual : vsig == "pairs";
   if (dtmin_ > 0.0 && dtmax_ > 0.0 && dtmin_ > dtmax_)
     error->all(FLERR, "fix sph/astro: dtmin {} is larger than dtmax {}", dtmin_, dtmax_);
   if (individual) {
