@@ -18,9 +18,8 @@ n 16, MSM gravity, to t = 0.8), the same scenes with individual timesteps (``sed
 are the particle-updates fix sph/astro counts; ``sedov16i2``, ``sedov22i2``, ``sedov35i2`` with
 ``-var limiter 2``; ``sedov16p``, ``sedov22p``, ``sedov35p`` and, with individual steps,
 ``sedov16ip``, ``sedov22ip``, ``sedov35ip``: the Courant signal speed over the neighbours,
-``-var vsig pairs``; ``sedov16c``,
-``sedov22c``, ``sedov35c`` and, with individual steps,
-``sedov16ic``, ``sedov22ic``, ``sedov35ic`` with SWIFT's Courant criterion, ``-var vsig pairs
+``-var vsig pairs``; ``sedov16c``, ``sedov22c``, ``sedov35c`` and, with individual steps,
+``sedov16ic``, ``sedov22ic``, ``sedov35ic``: SWIFT's Courant criterion, ``-var vsig pairs
 -var courant 0.4``), and ``swift35`` and ``swift56``: SWIFT's Sedov at 42 875 and
 175 616 particles (``--swift-bin``: the swift executable, built with SPHENIX and the cubic
 spline as its repository describes; ``--swift-dir``: a folder with ``swift_sedov.yml`` and
@@ -82,9 +81,9 @@ for _name in ("sedov16", "sedov22", "sedov35"):
     _script, _vars = SCENES[_name]
     SCENES[_name + "i2"] = (_script, dict(_vars, steps="individual", limiter=2))
 # Sedov with the Courant signal speed taken over the neighbours (vsig pairs): global steps
-# row name + "p", individual steps + "ip"; with SWIFT's Courant criterion (fix sph/astro vsig pairs courant 0.4: dt =
-# 0.4 h / max_j v_sig,ij, which is SWIFT's CFL 0.1 with its h = H / 1.825742 for the cubic
-# spline of support H = 2h): global steps row name + "c", individual steps + "ic"
+# row name + "p", individual steps + "ip"; with SWIFT's Courant criterion (vsig pairs courant
+# 0.4: dt = 0.4 h / max_j v_sig,ij, which is SWIFT's CFL 0.1 with its h = H / 1.825742 for the
+# cubic spline of support H = 2h): global steps row name + "c", individual steps + "ic"
 for _name in ("sedov16", "sedov22", "sedov35"):
     _script, _vars = SCENES[_name]
     SCENES[_name + "p"] = (_script, dict(_vars, vsig="pairs"))

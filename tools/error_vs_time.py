@@ -280,11 +280,12 @@ SCENES: Dict[str, Scene] = {
         presets={"steps": Preset(
             # global against individual timesteps (fix sph/astro steps individual), 2 ranks;
             # SWIFT's Sedov (SPHENIX, cubic spline, --hydro --limiter, 2 threads) measured by
-            # tools/benchmark_scenes.py in one script with SPH-ASTRO's rows, its L1(rho) by
-            # tools/swift_sedov_errors.py on its t = 0.1 snapshot
+            # tools/benchmark_scenes.py in one script with SPH-ASTRO's rows (the script of
+            # doc/validation.md's table, not this run: compare its times with that table's),
+            # its L1(rho) by tools/swift_sedov_errors.py on its t = 0.1 snapshot
             resolutions=(12, 16, 22), np=2, var=(), variants="steps=global;steps=individual",
             reference_label="SWIFT (2 threads)",
-            reference=((42875, 7.8, 0.448), (175616, 37.4, 0.398)),
+            reference=((42875, 9.4, 0.448), (175616, 45.9, 0.398)),
             notes="Sedov with global and individual timesteps, 2 MPI ranks")}),
     "toystar": Scene(
         input="examples/toystar/in.toystar", res_var="n", out_var="out",

@@ -7,10 +7,10 @@ Runs examples/sedov/in.sedov (background pressure 1e-6: the blast runs into gas 
 timestep is long) three times at the same resolution: every particle at the smallest step
 (``steps global``), individual steps with the timestep limiter (``steps individual``), and
 individual steps without it (``limiter off``), all with the same Courant signal speed
-(``--vsig``, fix sph/astro vsig; viscosity by default, as the fix). Prints for each the shock radius offset (binned
-density peak) and L1(rho) against the self-similar solution, the peak density, the energy
-error, the particle-updates, the LAMMPS steps and the wall time; then the individual runs'
-differences from the global one.
+(``--vsig``, fix sph/astro vsig; viscosity by default, as the fix). Prints for each the shock
+radius offset (binned density peak) and L1(rho) against the self-similar solution, the peak
+density, the energy error, the particle-updates, the LAMMPS steps and the wall time; then the
+individual runs' differences from the global one.
 
 Usage (from anywhere; after source build/env.sh: build/venv's python3 and lmp on the PATH)::
 
