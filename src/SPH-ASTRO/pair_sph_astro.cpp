@@ -214,23 +214,40 @@ void PairSPHAstro::finish()
   if (computed_step_ < 0) return;
   const SearchStatistics &s = lists_->statistics();
   const double *nneigh = neighbour_counts();
-  double local[6] = {
-      s.half_entries * s.atoms,     s.full_entries * s.atoms,          0.0,
-      static_cast<double>(s.atoms), static_cast<double>(atom->nghost), lists_->memory_usage()};
+  // (individual steps: the entries per row made, weighted alike)
+  const double entries = s.rows_eager > 0 ? s.reach_entries : s.half_entries;
+  double local[6] = {entries * s.atoms,
+                     s.full_entries * s.atoms,
+                     0.0,
+                     static_cast<double>(s.atoms),
+                     static_cast<double>(atom->nghost),
+                     lists_->memory_usage()};
   for (int i = 0; i < atom->nlocal; i++) local[2] += nneigh[i];
   double all[6];
   MPI_Allreduce(local, all, 6, MPI_DOUBLE, MPI_SUM, world);
   bigint builds[3] = {s.builds, s.step_builds, s.extensions}, builds_max[3];
   MPI_Allreduce(builds, builds_max, 3, MPI_LMP_BIGINT, MPI_MAX, world);
+  bigint rows[2] = {s.rows_made, s.rows_eager}, rows_all[2];
+  MPI_Allreduce(rows, rows_all, 2, MPI_LMP_BIGINT, MPI_SUM, world);
   if (comm->me != 0) return;
   const double atoms = MAX(all[3], 1.0);
   utils::logmesg(lmp,
                  "pair sph/astro neighbour search: lists made {} times after LAMMPS' builds "
                  "and {} times inside a step, extended {} times inside a step for grown h "
-                 "(most on a rank); per particle: {:.1f} half-list entries, {:.1f} gather-row "
-                 "entries, {:.1f} neighbours inside the kernel support, {:.2f} ghost atoms, "
+                 "(most on a rank); ",
+                 builds_max[0], builds_max[1], builds_max[2]);
+  if (rows_all[1] > 0)    // individual steps: rows made for the atoms when first active
+    utils::logmesg(lmp,
+                   "rows made for {:.1f} % of the particles' intervals between builds (those "
+                   "with an active particle in their tree leaf); per row made: {:.1f} reach-row "
+                   "entries (both directions of a pair), {:.1f} gather-row entries; ",
+                   100.0 * rows_all[0] / rows_all[1], all[0] / atoms, all[1] / atoms);
+  else
+    utils::logmesg(lmp, "per particle: {:.1f} half-list entries, {:.1f} gather-row entries; ",
+                   all[0] / atoms, all[1] / atoms);
+  utils::logmesg(lmp,
+                 "per particle: {:.1f} neighbours inside the kernel support, {:.2f} ghost atoms, "
                  "{:.0f} bytes of lists and tree\n",
-                 builds_max[0], builds_max[1], builds_max[2], all[0] / atoms, all[1] / atoms,
                  all[2] / atoms, all[4] / atoms, all[5] / atoms);
 }
 
@@ -333,6 +350,7 @@ void PairSPHAstro::compute(int eflag, int vflag)
   search.h_cap = h_cap_;
   search.full = gradh();
   search.newton = force->newton_pair != 0;
+  search.active_only = active_ != nullptr;
   search.sph_type = sph_type_;
   lists_->update(atom->dvector[state_->h], search);
   alpha_atom_ = alpha_force_ = nullptr;

@@ -24,6 +24,7 @@ EvaluationResult ForceEvaluation::run(NeighbourLists &lists, const GradhSettings
     exchange_.forward({{a_.h, nullptr, 1, false}});    // the ghosts' h of this step
   GradhSettings iteration = gradh;
   if (individual()) {    // the h-rho iteration of the active atoms only
+    lists.prepare(a_.steps.active);
     active_owned_.clear();
     for (int ii = 0; ii < gradh.full.inum; ii++)
       if (a_.steps.active[gradh.full.ilist[ii]]) active_owned_.push_back(gradh.full.ilist[ii]);
@@ -62,9 +63,8 @@ EvaluationResult ForceEvaluation::run(NeighbourLists &lists, const GradhSettings
 
 NeighView ForceEvaluation::evaluated_pairs(NeighbourLists &lists)
 {
-  const NeighView half = lists.half(a_.h);
-  if (!individual()) return half;
-  return lists.due(half, a_.steps.active);
+  if (!individual()) return lists.half(a_.h);
+  return lists.due(a_.h, a_.steps.active);
 }
 
 void ForceEvaluation::restore(double *field, const double *kept)

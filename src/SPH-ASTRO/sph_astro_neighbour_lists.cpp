@@ -64,17 +64,34 @@ double RowStore::memory_usage() const
 void NeighbourLists::update(const double *h, const SearchSettings &s)
 {
   settings_ = s;
+  settings_.active_only = s.active_only && s.newton;
   // LAMMPS built in this step (ago 0) and not yet for these lists: a new step, or a new run
-  // (its setup builds at the step the previous run ended on)
-  if (built_ && !(neighbor->ago == 0 && (stale_ || lmp->update->ntimestep != build_step_))) return;
+  // (its setup builds at the step the previous run ended on); or the lists were made for the
+  // other kind of step (a run 0 between runs of individual steps: made whole again)
+  const bool lammps_built = neighbor->ago == 0 && (stale_ || lmp->update->ntimestep != build_step_);
+  if (built_ && !lammps_built && settings_.active_only == active_only_) return;
   stale_ = false;
-  build_step_ = lmp->update->ntimestep;
-  build(h, neighbor->skin);
-  motion_ = 0.5 * neighbor->skin;
-  stats_.builds++;
+  if (!built_ || lammps_built) {
+    build_step_ = lmp->update->ntimestep;
+    build(h, neighbor->skin);
+    motion_ = 0.5 * neighbor->skin;
+    stats_.builds++;
+  } else {    // (as an in-step build: atoms up to skin from here before LAMMPS' next build)
+    build(h, 2.0 * neighbor->skin);
+    motion_ = neighbor->skin;
+    stats_.step_builds++;
+  }
 }
 
 NeighView NeighbourLists::half(const double *h)
+{
+  if (active_only_)
+    error->one(FLERR, "pair_style sph/astro: the half list is not made with individual steps");
+  follow_growth(h);
+  return half_.view(inum_, ilist_.data());
+}
+
+void NeighbourLists::follow_growth(const double *h)
 {
   const int nall = atom->nlocal + atom->nghost;
   const double *hl = hl_.data();
@@ -93,7 +110,6 @@ NeighView NeighbourLists::half(const double *h)
     } else
       extend(h, 2.0 * neighbor->skin);
   }
-  return half_.view(inum_, ilist_.data());
 }
 
 bool NeighbourLists::row_of_pair(int a, int b, int &row, int &partner) const
@@ -139,8 +155,14 @@ void NeighbourLists::extend(const double *h, double pad)
   inserts_.clear();
   for (int p : grown_)
     tree_.query(x, radius_.data(), x[p], radius_[p], pad, motion_, [&](int j, double) {
+      if (j == p) return;
+      if (active_only_) {    // both reach rows, where made (the others will use the new radii)
+        if (p < nlocal && row_made(p)) inserts_.emplace_back(p, j);
+        if (j < nlocal && row_made(j)) inserts_.emplace_back(j, p);
+        return;
+      }
       int row, partner;
-      if (j != p && row_of_pair(p, j, row, partner)) inserts_.emplace_back(row, partner);
+      if (row_of_pair(p, j, row, partner)) inserts_.emplace_back(row, partner);
     });
   std::sort(inserts_.begin(), inserts_.end());
   inserts_.erase(std::unique(inserts_.begin(), inserts_.end()), inserts_.end());
@@ -170,7 +192,7 @@ void NeighbourLists::extend(const double *h, double pad)
   // gather rows of the grown owned atoms: r < R hl_i + pad
   if (s.full)
     for (int p : grown_) {
-      if (p >= nlocal) continue;
+      if (p >= nlocal || !row_made(p)) continue;
       const double reach = radius_[p] + pad;
       merged_.clear();
       tree_.query(x, radius_.data(), x[p], radius_[p], pad, motion_, [&](int j, double r2) {
@@ -218,71 +240,151 @@ void NeighbourLists::build(const double *h, double pad)
   inum_ = static_cast<int>(ilist_.size());
   tree_.build(x, radius_.data(), members_.data(), static_cast<int>(members_.size()));
 
+  pad_ = pad;
+  active_only_ = s.active_only;
   half_rule_ = {nlocal, s.newton, domain->triclinic != 0, 0.01 * force->angstrom};
-  const HalfFromFull &half_rule = half_rule_;
   half_.rows.reset();
   full_.rows.reset();
   due_indexed_ = false;
-  // leaf by leaf: one traversal per leaf collects its candidates (sph_astro_neighbour_tree.h)
   const int leaves = tree_.leaves();
-  for (int l = 0; l < leaves; l++) {
-    bool owned = false;
-    for (int k = tree_.leaf_begin(l); k < tree_.leaf_end(l); k++) owned |= tree_.point(k) < nlocal;
-    if (!owned) continue;
-    tree_.query_leaf(l, pad, [&](int k, const int *found, int n) {
-      const int i = tree_.point(k);
-      if (i >= nlocal) return;
-      scratch_.resize(n);
-      int m = 0;
-      for (int c = 0; c < n; c++) {
-        const int j = tree_.point(found[c]);
-        scratch_[m] = j;
-        m += j != i;
-      }
-      // (rows in atom order: every sum over a row then runs in an order that does not depend
-      // on the tree, so a run continued from a restart, or with lists made at other steps,
-      // adds the same terms in the same order)
-      if (s.full) {    // the gather rows: r < R hl_i + pad
-        const double reach = radius_[i] + pad;
-        const double reach2 = reach * reach;
-        const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
-        full_scratch_.resize(m);
-        int nfull = 0;
-        for (int c = 0; c < m; c++) {
-          const int j = scratch_[c];
-          const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
-          full_scratch_[nfull] = j;
-          nfull += dx * dx + dy * dy + dz * dz < reach2;
-        }
-        full_.firstneigh[i] = full_.rows.append(full_scratch_.data(), nfull);
-        full_.numneigh[i] = nfull;
-      }
-      int nhalf = 0;
-      for (int c = 0; c < m; c++) {
-        const int j = scratch_[c];
-        scratch_[nhalf] = j;
-        nhalf += half_rule.keeps(x, i, j);
-      }
-      half_.firstneigh[i] = half_.rows.append(scratch_.data(), nhalf);
-      half_.numneigh[i] = nhalf;
-    });
-  }
+  leaf_made_.assign(leaves, 0);
+  if (active_only_) {    // rows when their atoms are first active (prepare())
+    if (static_cast<int>(leaf_of_.size()) < nlocal) leaf_of_.resize(nlocal);
+    for (int l = 0; l < leaves; l++)
+      for (int k = tree_.leaf_begin(l); k < tree_.leaf_end(l); k++)
+        if (tree_.point(k) < nlocal) leaf_of_[tree_.point(k)] = l;
+    stats_.rows_eager += inum_;
+  } else
+    for (int l = 0; l < leaves; l++) make_leaf_rows(l);
   built_ = true;
   const double atoms = std::max(inum_, 1);
   stats_.atoms = inum_;
-  stats_.half_entries = half_.rows.entries() / atoms;
-  stats_.full_entries = s.full ? full_.rows.entries() / atoms : 0.0;
+  stats_.half_entries = active_only_ ? 0.0 : half_.rows.entries() / atoms;
+  stats_.full_entries = s.full && !active_only_ ? full_.rows.entries() / atoms : 0.0;
+  stats_.reach_entries = 0.0;
+  rows_since_build_ = 0;
 }
 
-NeighView NeighbourLists::due(const NeighView &half, const char *active)
+// one traversal collects the leaf's candidates (sph_astro_neighbour_tree.h); the rows hold the
+// pairs at the build's positions, as the build saw them
+void NeighbourLists::make_leaf_rows(int l)
 {
-  const int nall = atom->nlocal + atom->nghost;
+  leaf_made_[l] = 1;
+  const int nlocal = atom->nlocal;
+  bool owned = false;
+  for (int k = tree_.leaf_begin(l); k < tree_.leaf_end(l); k++) owned |= tree_.point(k) < nlocal;
+  if (!owned) return;
+  const SearchSettings &s = settings_;
+  const HalfFromFull &half_rule = half_rule_;
+  const bool reach_rows = active_only_;
+  const double pad = pad_;
+  int made = 0;
+  tree_.query_leaf(l, pad, [&](int k, const int *found, int n) {
+    const int i = tree_.point(k);
+    if (i >= nlocal) return;
+    made++;
+    const double *xi = tree_.build_position(k);
+    // (rows in atom order: every sum over a row then runs in an order that does not depend
+    // on the tree, so a run continued from a restart, or with lists made at other steps,
+    // adds the same terms in the same order)
+    if (s.full) {    // the gather rows: r < R hl_i + pad
+      const double reach = radius_[i] + pad;
+      const double reach2 = reach * reach;
+      full_scratch_.resize(n);
+      int nfull = 0;
+      for (int c = 0; c < n; c++) {
+        const double *xj = tree_.build_position(found[c]);
+        const double dx = xi[0] - xj[0], dy = xi[1] - xj[1], dz = xi[2] - xj[2];
+        full_scratch_[nfull] = tree_.point(found[c]);
+        nfull += (found[c] != k) & (dx * dx + dy * dy + dz * dz < reach2);
+      }
+      full_.firstneigh[i] = full_.rows.append(full_scratch_.data(), nfull);
+      full_.numneigh[i] = nfull;
+    }
+    scratch_.resize(n);
+    int nrow = 0;
+    for (int c = 0; c < n; c++) {
+      const int j = tree_.point(found[c]);
+      scratch_[nrow] = j;
+      nrow += (found[c] != k) &
+          (reach_rows || half_rule.keeps_at(xi, tree_.build_position(found[c]), i, j));
+    }
+    half_.firstneigh[i] = half_.rows.append(scratch_.data(), nrow);
+    half_.numneigh[i] = nrow;
+  });
+  if (reach_rows) {
+    stats_.rows_made += made;
+    rows_since_build_ += made;
+    stats_.reach_entries = static_cast<double>(half_.rows.entries()) / rows_since_build_;
+    if (s.full) stats_.full_entries = static_cast<double>(full_.rows.entries()) / rows_since_build_;
+  }
+}
+
+void NeighbourLists::prepare(const char *active)
+{
+  if (!active_only_) return;
+  for (int ii = 0; ii < inum_; ii++) {
+    const int i = ilist_[ii];
+    if (active[i] && !leaf_made_[leaf_of_[i]]) make_leaf_rows(leaf_of_[i]);
+  }
+}
+
+NeighView NeighbourLists::due(const double *h, const char *active)
+{
+  follow_growth(h);
+  if (active_only_) {
+    due_view_ = due_from_reach_rows(active);
+    return due_view_;
+  }
+  const NeighView half = half_.view(inum_, ilist_.data());
   if (!due_indexed_) {
-    due_.index(half, nall);
+    due_.index(half, atom->nlocal + atom->nghost);
     due_indexed_ = true;
   }
-  due_view_ = due_.select(half, atom->nlocal, nall, active);
+  due_view_ = due_.select(half, atom->nlocal, atom->nlocal + atom->nghost, active);
   return due_view_;
+}
+
+NeighView NeighbourLists::due_from_reach_rows(const char *active)
+{
+  prepare(active);
+  const int nlocal = atom->nlocal;
+  if (static_cast<int>(due_numneigh_.size()) < nlocal) {
+    due_numneigh_.resize(nlocal);
+    due_firstneigh_.resize(nlocal);
+  }
+  due_ilist_.clear();
+  due_entries_.clear();
+  for (int ii = 0; ii < inum_; ii++) {
+    const int i = ilist_[ii];
+    if (!active[i]) continue;
+    const int *row = half_.firstneigh[i];
+    const int n = half_.numneigh[i];
+    const double *xi = tree_.build_position(tree_.slot(i));
+    const std::size_t start = due_entries_.size();
+    due_entries_.resize(start + n);
+    int *out = due_entries_.data() + start;
+    int m = 0;
+    for (int k = 0; k < n; k++) {
+      const int j = row[k];
+      out[m] = j;
+      // (a pair of two active atoms by the half rule: once, in the lower owned atom's row or
+      // on the rank the build positions choose)
+      m += !active[j] ||
+          (j < nlocal ? i < j : half_rule_.keeps_at(xi, tree_.build_position(tree_.slot(j)), i, j));
+    }
+    due_entries_.resize(start + m);
+    due_numneigh_[i] = m;
+    due_ilist_.push_back(i);
+  }
+  // (the entries are in place now: their addresses)
+  std::size_t offset = 0;
+  for (int i : due_ilist_) {
+    due_firstneigh_[i] = due_entries_.data() + offset;
+    offset += due_numneigh_[i];
+  }
+  return {static_cast<int>(due_ilist_.size()), due_ilist_.data(), due_numneigh_.data(),
+          due_firstneigh_.data()};
 }
 
 // a gather row searched at the current positions (the tree knows how far atoms may have moved)

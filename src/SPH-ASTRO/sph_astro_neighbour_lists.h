@@ -23,6 +23,19 @@
 // they are made anew instead. While every h <= hl, every pair inside a kernel support is in the lists,
 // so each sum over them is the sum over all particles. h_cap follows LAMMPS' ghost cutoff:
 // (cutoff - skin) / R, the largest support inside which all particles are owned or ghosts.
+//
+// Individual timesteps with newton on (SearchSettings::active_only): a step evaluates only the
+// pairs with an active atom, and most atoms are active in few of the intervals between LAMMPS'
+// builds. The build then makes the tree only; the rows of a tree leaf are made the first time
+// one of its owned atoms is active, from the positions and pad of the build (the same pairs an
+// eager build finds, with the radii of the extensions since). These reach rows hold both
+// directions of a pair, j with r_ij < R max(hl_i, hl_j) + pad, and a step's pairs are taken
+// from its active atoms' rows: (i, j) with i active is evaluated in i's row when j is inactive,
+// and by the half rule when both are active (i < j for owned j; the build positions' rule for
+// a ghost j, whose owner decides the reverse). Each pair is then evaluated once on one rank,
+// and with every atom active the pairs and their order are those of the half list. With
+// newton off a rank must also evaluate its inactive atoms' pairs with active ghosts, so the
+// lists are made whole and the due pairs selected from the half list (DuePairs).
 
 #ifndef LMP_SPH_ASTRO_NEIGHBOUR_LISTS_H
 #define LMP_SPH_ASTRO_NEIGHBOUR_LISTS_H
@@ -71,7 +84,8 @@ struct SearchSettings {
   double h_cap;            // hl <= h_cap
   bool full;               // gather rows of the h-rho iteration
   bool newton;
-  const int *sph_type;    // per type: 1 if the pair style acts on it
+  const int *sph_type;         // per type: 1 if the pair style acts on it
+  bool active_only = false;    // individual steps: rows only where an atom is active (newton on)
 };
 
 struct SearchStatistics {
@@ -83,6 +97,11 @@ struct SearchStatistics {
   LAMMPS_NS::bigint wide_rows = 0;          // h iterations that went past their row's limit
   double half_entries = 0.0, full_entries = 0.0;    // per atom, latest build (this rank)
   int atoms = 0;                                    // owned SPH atoms, latest build
+  // active_only: rows made (reach rows, both directions of each pair) and the rows an eager
+  // build would have made (atoms x builds); reach_entries and full_entries per made row since
+  // the latest build (extensions included)
+  LAMMPS_NS::bigint rows_made = 0, rows_eager = 0;
+  double reach_entries = 0.0;
 };
 
 class NeighbourLists : protected LAMMPS_NS::Pointers {
@@ -93,14 +112,18 @@ class NeighbourLists : protected LAMMPS_NS::Pointers {
   void update(const double *h, const SearchSettings &s);
   // a run begins (its setup rebuilds LAMMPS' structures, possibly at the same step)
   void invalidate() { stale_ = true; }
-  // the half list, extended (or made again) first if an h (owned or ghost) outgrew its hl;
-  // collective: every rank decides alike
+  // the half list (not with active_only), extended (or made again) first if an h (owned or
+  // ghost) outgrew its hl; collective: every rank decides alike
   NeighView half(const double *h);
   static constexpr double EXTEND_LIMIT =
       0.1;    // share of grown atoms above which lists are made anew
+  // the gather rows; with active_only, of the atoms prepare() was given
   NeighView full() const { return full_.view(inum_, ilist_.data()); }
-  // individual steps: the pairs of half (the view half() returned) with an active atom
-  NeighView due(const NeighView &half, const char *active);
+  // individual steps: the rows of the active atoms (owned and ghost flags) made, if not yet
+  void prepare(const char *active);
+  // individual steps: the pairs with an active atom, each once, after the extension half()
+  // makes (collective)
+  NeighView due(const double *h, const char *active);
   // the due pairs of the last due()
   const NeighView &due_view() const { return due_view_; }
   // the largest h each row serves (owned and ghost)
@@ -124,11 +147,18 @@ class NeighbourLists : protected LAMMPS_NS::Pointers {
   std::vector<double> hl_, radius_;
   std::vector<int> ilist_, members_, scratch_, full_scratch_;
   int inum_ = 0;
-  SearchList half_, full_;
+  SearchList half_, full_;    // half_: the half rows, or with active_only the reach rows
   SearchStatistics stats_;
   DuePairs due_;
   bool due_indexed_ = false;    // due_ holds the index of the current half list
   NeighView due_view_{0, nullptr, nullptr, nullptr};
+  bool active_only_ = false;    // the lists were made with active_only
+  double pad_ = 0.0;            // the pad of the latest build (rows made later use it)
+  LAMMPS_NS::bigint rows_since_build_ = 0;
+  std::vector<char> leaf_made_;    // per tree leaf: its owned atoms' rows are made
+  std::vector<int> leaf_of_;       // per owned SPH atom: its tree leaf
+  std::vector<int> due_ilist_, due_numneigh_, due_entries_;
+  std::vector<int *> due_firstneigh_;
   struct Wide : WideRows {
     NeighbourLists *lists;
     explicit Wide(NeighbourLists *l) : lists(l) {}
@@ -139,7 +169,14 @@ class NeighbourLists : protected LAMMPS_NS::Pointers {
   } wide_{this};
 
   void build(const double *h, double pad);
+  // the rows of the owned atoms of tree leaf l (half or reach rows, and gather rows)
+  void make_leaf_rows(int l);
+  // the extension or new build when an h outgrew its hl (collective)
+  void follow_growth(const double *h);
   void extend(const double *h, double pad);
+  bool row_made(int i) const { return !active_only_ || leaf_made_[leaf_of_[i]]; }
+  // active_only: the due pairs from the reach rows of the active atoms
+  NeighView due_from_reach_rows(const char *active);
   // the owned atom whose half-list row holds pair (a, b) by the half rule at the build's
   // positions, and its partner; false if no row on this rank holds it
   bool row_of_pair(int a, int b, int &row, int &partner) const;
