@@ -36,7 +36,9 @@ struct Cloud {
 };
 
 // shape 0: a clump in a tenuous cube (radius ~ local spacing); 1: a line; 2: a plane;
-// 3: points on a coarse grid (many coincident coordinates and points)
+// 3: points on a coarse grid (many coincident coordinates and points); 4: a tenth of the points
+// at one point and a tenth at distances 2^-k from it (each split at the middle of a box would
+// part one of them from the rest: a level each), in a uniform cube
 Cloud make_cloud(int shape, int n, unsigned seed)
 {
   std::mt19937 gen(seed);
@@ -50,6 +52,8 @@ Cloud make_cloud(int shape, int n, unsigned seed)
     if (shape == 2) p[2] = 0.25;
     if (shape == 3)
       for (int d = 0; d < 3; d++) p[d] = 0.125 * std::floor(8.0 * p[d]);
+    if (shape == 4 && i < n / 5)
+      for (int d = 0; d < 3; d++) p[d] = i < n / 10 ? 0.0 : std::ldexp(0.5, n / 10 - i);
     c.radius[i] = clump ? 0.01 * (1.0 + u(gen)) : 0.1 * (0.5 + u(gen));
   }
   return c;
@@ -85,11 +89,14 @@ std::vector<int> tree_query(const NeighbourTree &tree, Cloud &c, const double *c
 
 TEST(NeighbourTree, FindsExactlyTheGatherAndScatterNeighbours)
 {
-  for (int shape = 0; shape < 4; shape++) {
+  for (int shape = 0; shape < 5; shape++) {
     Cloud c = make_cloud(shape, 3000, 17u + shape);
     NeighbourTree tree;
     tree.build(c.x.data(), c.radius.data(), c.index.data(), static_cast<int>(c.index.size()));
     ASSERT_EQ(tree.size(), 3000);
+    // (the queries' stacks hold one node per level)
+    EXPECT_LE(tree.depth(), NeighbourTree::SPATIAL_DEPTH + 7) << "shape " << shape;
+    if (shape == 4) EXPECT_GE(tree.depth(), NeighbourTree::SPATIAL_DEPTH) << "shape " << shape;
     std::size_t total = 0;
     for (int i = 0; i < 3000; i += 7) {
       for (double pad : {0.0, 0.02}) {

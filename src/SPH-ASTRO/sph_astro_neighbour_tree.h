@@ -16,7 +16,9 @@
 // moved since the build). The cost of a query follows the number of particles it finds, not
 // the range of r: a particle in a dense clump does not scan the neighbourhood of the largest h.
 //
-// The tree keeps the positions and radii of the build in its own order (contiguous leaves).
+// Nodes split their points at the middle of their box's longest side (cells of regular shape,
+// as the octrees of those codes). The tree keeps the positions and radii of the build in its
+// own order (contiguous leaves).
 // query_leaf() serves all particles of one leaf at once: one traversal collects the candidates
 // of the leaf's box, and each particle of the leaf then keeps its own from them.
 
@@ -32,10 +34,16 @@ namespace SPHAstro {
 class NeighbourTree {
  public:
   static constexpr int LEAF_SIZE = 32;
+  // splits at the middle of a node's box down to this depth, at the median below; a query's
+  // stack holds one node per level: SPATIAL_DEPTH + 26 levels of median splits for n < 2^31
+  static constexpr int SPATIAL_DEPTH = 48;
+  static constexpr int STACK = 128;
 
   // build over the points index[0..n) of x, with search radii radius[] (per point of x)
   void build(double **x, const double *radius, const int *index, int n);
   int size() const { return static_cast<int>(perm_.size()); }
+  // the largest depth of a node (the root: 0)
+  int depth() const { return depth_; }
   int leaves() const { return static_cast<int>(leaves_.size()); }
   // the points of leaf l: tree positions [begin, end); their indices point(k)
   int leaf_begin(int l) const { return nodes_[leaves_[l]].begin; }
@@ -43,7 +51,7 @@ class NeighbourTree {
   int point(int k) const { return perm_[k]; }
   // the tree position of point index p (-1 if not in the tree), and its position at the build
   int slot(int p) const { return p < static_cast<int>(slot_.size()) ? slot_[p] : -1; }
-  const double *build_position(int k) const { return &pos_[3 * static_cast<std::size_t>(k)]; }
+  const double *build_position(int k) const { return items_[k].x; }
   // new search radii (radius[], per point as at the build): the nodes' largest radii follow
   void update_radii(const double *radius);
 
@@ -55,7 +63,7 @@ class NeighbourTree {
              double motion, VISIT &&visit) const
   {
     if (nodes_.empty()) return;
-    int stack[128];
+    int stack[STACK];
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
@@ -84,7 +92,7 @@ class NeighbourTree {
   {
     const Node &leaf = nodes_[leaves_[l]];
     candidates_.clear();
-    int stack[128];
+    int stack[STACK];
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
@@ -95,9 +103,9 @@ class NeighbourTree {
         std::size_t n = candidates_.size();
         candidates_.resize(n + (node.end - node.begin));
         for (int c = node.begin; c < node.end; c++) {
-          const double rc = std::max(leaf.rmax, rad_[c]) + pad;
+          const double rc = std::max(leaf.rmax, items_[c].radius) + pad;
           candidates_[n] = c;
-          n += box_point_distance2(leaf, &pos_[3 * c]) < rc * rc;
+          n += box_point_distance2(leaf, items_[c].x) < rc * rc;
         }
         candidates_.resize(n);
       } else {
@@ -120,14 +128,15 @@ class NeighbourTree {
     for (int m = 0; m < nc; m++) {
       const int c = static_cast<int>(keys_[m] & 0xffffffffULL);
       cand_index[m] = c;
-      cx[m] = pos_[3 * c];
-      cy[m] = pos_[3 * c + 1];
-      cz[m] = pos_[3 * c + 2];
-      cr[m] = rad_[c];
+      cx[m] = items_[c].x[0];
+      cy[m] = items_[c].x[1];
+      cz[m] = items_[c].x[2];
+      cr[m] = items_[c].radius;
     }
     int *found = found_.data();
     for (int k = leaf.begin; k < leaf.end; k++) {
-      const double xk = pos_[3 * k], yk = pos_[3 * k + 1], zk = pos_[3 * k + 2], rk = rad_[k];
+      const double xk = items_[k].x[0], yk = items_[k].x[1], zk = items_[k].x[2],
+                   rk = items_[k].radius;
       int n = 0;
       for (int m = 0; m < nc; m++) {
         const double dx = cx[m] - xk, dy = cy[m] - yk, dz = cz[m] - zk;
@@ -141,12 +150,12 @@ class NeighbourTree {
 
   double memory_usage() const
   {
-    return static_cast<double>(
-        nodes_.capacity() * sizeof(Node) +
-        (perm_.capacity() + leaves_.capacity() + candidates_.capacity() + found_.capacity() +
-         slot_.capacity()) *
-            sizeof(int) +
-        (pos_.capacity() + rad_.capacity() + keys_.capacity() + cand_.capacity()) * sizeof(double));
+    return static_cast<double>(nodes_.capacity() * sizeof(Node) +
+                               (perm_.capacity() + leaves_.capacity() + candidates_.capacity() +
+                                found_.capacity() + slot_.capacity()) *
+                                   sizeof(int) +
+                               (keys_.capacity() + cand_.capacity()) * sizeof(double) +
+                               items_.capacity() * sizeof(Item));
   }
 
  private:
@@ -158,11 +167,18 @@ class NeighbourTree {
   };
   std::vector<Node> nodes_;
   std::vector<int> perm_, leaves_, candidates_, found_, slot_;
-  std::vector<double> pos_, rad_;    // positions and radii at the build, in tree order
   std::vector<unsigned long long> keys_;
   std::vector<double> cand_;    // x, y, z, r of a leaf's candidates
+  struct Item {
+    double x[3];
+    double radius;
+    int index;
+  };
+  std::vector<Item> items_;    // positions and radii at the build, in tree order
 
-  void make_node(double **x, const double *radius, int id, int begin, int end);
+  int depth_ = 0;
+
+  void make_node(int id, int begin, int end, int depth);
 
   // (branch-free: the comparisons of a traversal are unpredictable)
   static double box_point_distance2(const Node &node, const double *c)
