@@ -155,11 +155,33 @@ TEST(NeighbourTree, LeafQueriesFindWhatPointQueriesFind)
         const int i = tree.point(k);
         std::vector<int> got;
         for (int m = 0; m < n; m++) got.push_back(tree.point(found[m]));
-        std::sort(got.begin(), got.end());
+        ASSERT_TRUE(std::is_sorted(got.begin(), got.end())) << "shape " << shape;
         ASSERT_EQ(got, brute_force(c, c.x[i], c.radius[i], 0.01))
             << "shape " << shape << ", point " << i;
         served++;
       });
     EXPECT_EQ(served, 2000) << "shape " << shape;
+  }
+}
+
+// the candidates' sort by index: as std::sort for indices of up to 1, 11, 12, 22, 23 and 31 bits
+TEST(NeighbourTree, RadixSortByIndexIsTheSort)
+{
+  std::mt19937 gen(3u);
+  std::vector<unsigned long long> scratch;
+  std::vector<int> count;
+  for (unsigned top : {1u, 2047u, 4095u, (1u << 22) - 1u, (1u << 23) - 1u, 2147483647u}) {
+    std::uniform_int_distribution<unsigned> index(0, top);
+    for (int n : {0, 1, 7, 900, 5000}) {
+      std::vector<unsigned long long> keys;
+      for (int m = 0; m < n; m++)
+        keys.push_back((static_cast<unsigned long long>(index(gen)) << 32) | gen());
+      std::vector<unsigned long long> expect = keys;
+      std::stable_sort(expect.begin(), expect.end(), [](auto a, auto b) {
+        return (a >> 32) < (b >> 32);
+      });
+      NeighbourTree::sort_by_index(keys, scratch, count);
+      EXPECT_EQ(keys, expect) << "top " << top << ", n " << n;
+    }
   }
 }

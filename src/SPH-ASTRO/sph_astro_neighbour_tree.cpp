@@ -108,4 +108,32 @@ void NeighbourTree::make_node(int id, int begin, int end, int depth)
   nodes_[id] = node;
 }
 
+void NeighbourTree::sort_by_index(std::vector<unsigned long long> &keys,
+                                  std::vector<unsigned long long> &scratch, std::vector<int> &count)
+{
+  unsigned top = 0;
+  for (unsigned long long key : keys) top = std::max(top, static_cast<unsigned>(key >> 32));
+  int bits = 0;
+  while (bits < 32 && (top >> bits) != 0) bits++;
+  const int passes = (bits + 10) / 11;
+  if (passes == 0) return;
+  const int digit = (bits + passes - 1) / passes;
+  const unsigned long long mask = (1ULL << digit) - 1ULL;
+  scratch.resize(keys.size());
+  count.resize(std::size_t(1) << digit);
+  for (int pass = 0; pass < passes; pass++) {
+    const int shift = 32 + pass * digit;
+    std::fill(count.begin(), count.end(), 0);
+    for (unsigned long long key : keys) count[(key >> shift) & mask]++;
+    int offset = 0;
+    for (int &c : count) {
+      const int here = c;
+      c = offset;
+      offset += here;
+    }
+    for (unsigned long long key : keys) scratch[count[(key >> shift) & mask]++] = key;
+    keys.swap(scratch);
+  }
+}
+
 }    // namespace SPHAstro

@@ -119,7 +119,7 @@ class NeighbourTree {
     for (int m = 0; m < nc; m++)
       keys_[m] = (static_cast<unsigned long long>(perm_[candidates_[m]]) << 32) |
           static_cast<unsigned>(candidates_[m]);
-    std::sort(keys_.begin(), keys_.end());
+    sort_by_index(keys_, sorted_, digit_count_);
     // the candidates' positions and radii side by side for the scans below
     cand_.resize(4 * static_cast<std::size_t>(nc));
     found_.resize(nc);
@@ -148,14 +148,21 @@ class NeighbourTree {
     }
   }
 
+  // keys (index << 32 | payload, index < 2^31) in increasing index, payloads of equal indices
+  // in their order: a least significant digit first radix sort over the bits of the largest
+  // index (no comparisons to mispredict); scratch and count are its work space
+  static void sort_by_index(std::vector<unsigned long long> &keys,
+                            std::vector<unsigned long long> &scratch, std::vector<int> &count);
+
   double memory_usage() const
   {
-    return static_cast<double>(nodes_.capacity() * sizeof(Node) +
-                               (perm_.capacity() + leaves_.capacity() + candidates_.capacity() +
-                                found_.capacity() + slot_.capacity()) *
-                                   sizeof(int) +
-                               (keys_.capacity() + cand_.capacity()) * sizeof(double) +
-                               items_.capacity() * sizeof(Item));
+    return static_cast<double>(
+        nodes_.capacity() * sizeof(Node) +
+        (perm_.capacity() + leaves_.capacity() + candidates_.capacity() + found_.capacity() +
+         slot_.capacity()) *
+            sizeof(int) +
+        (keys_.capacity() + sorted_.capacity() + cand_.capacity()) * sizeof(double) +
+        digit_count_.capacity() * sizeof(int) + items_.capacity() * sizeof(Item));
   }
 
  private:
@@ -179,6 +186,8 @@ class NeighbourTree {
   int depth_ = 0;
 
   void make_node(int id, int begin, int end, int depth);
+  std::vector<unsigned long long> sorted_;
+  std::vector<int> digit_count_;
 
   // (branch-free: the comparisons of a traversal are unpredictable)
   static double box_point_distance2(const Node &node, const double *c)
