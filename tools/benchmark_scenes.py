@@ -97,9 +97,11 @@ ORDER = ["box1e4", "box1e5", "box1e6", "box1e5i"] + [
     "noh24", "noh24i", "evrard", "evrardi", "swift35", "swift56"]
 
 _LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", re.M)
-_SEARCH = re.compile(r"pair sph/astro neighbour search: .*?per particle: (\S+) half-list "
-                     r"entries, (\S+) gather-row entries, (\S+) neighbours inside the kernel "
-                     r"support, (\S+) ghost atoms", re.S)
+# (with individual steps the line gives entries per row made, of reach rows: no half list)
+_SEARCH = re.compile(r"pair sph/astro neighbour search: .*?per (?:particle|row made): (\S+) "
+                     r"(half-list|reach-row) entries.*?, (\S+) gather-row entries[,;] "
+                     r"(?:per particle: )?(\S+) neighbours inside the kernel support, (\S+) "
+                     r"ghost atoms", re.S)
 _RSS = re.compile(r"RSS_KB (\d+)")
 _UPDATES = re.compile(r"fix sph/astro steps individual: (\S+) particle-updates")
 
@@ -139,8 +141,11 @@ def run_lammps(name, np_ranks, outdir, env):
     if individual:
         row["updates"] = sum(float(v) for v in individual)
     found = _SEARCH.findall(log)
-    row["half"], row["rows"], row["kern"], row["ghosts"] = (
-        [float(v) for v in found[-1]] if found else [float("nan")] * 4)
+    row["half"], row["rows"], row["kern"], row["ghosts"] = [float("nan")] * 4
+    if found:
+        entries, kind, rows, kern, ghosts = found[-1]
+        row["half"] = float(entries) if kind == "half-list" else float("nan")
+        row["rows"], row["kern"], row["ghosts"] = float(rows), float(kern), float(ghosts)
     return row
 
 

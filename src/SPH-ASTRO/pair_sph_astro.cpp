@@ -41,6 +41,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <string>
 #include <vector>
 
 using namespace LAMMPS_NS;
@@ -215,8 +216,8 @@ void PairSPHAstro::finish()
   const SearchStatistics &s = lists_->statistics();
   const double *nneigh = neighbour_counts();
   // (individual steps: the entries per row made, weighted alike)
-  const double entries = s.rows_eager > 0 ? s.reach_entries : s.half_entries;
-  double local[6] = {entries * s.atoms,
+  const double row_entries = s.rows_eager > 0 ? s.reach_entries : s.half_entries;
+  double local[6] = {row_entries * s.atoms,
                      s.full_entries * s.atoms,
                      0.0,
                      static_cast<double>(s.atoms),
@@ -231,24 +232,22 @@ void PairSPHAstro::finish()
   MPI_Allreduce(rows, rows_all, 2, MPI_LMP_BIGINT, MPI_SUM, world);
   if (comm->me != 0) return;
   const double atoms = MAX(all[3], 1.0);
+  // individual steps with newton on: rows made for the atoms when first active
+  const std::string entries = rows_all[1] > 0
+      ? fmt::format("rows made for {:.1f} % of the particles' intervals between builds (those "
+                    "with an active particle in their tree leaf); per row made: {:.1f} "
+                    "reach-row entries (both directions of a pair), {:.1f} gather-row entries; "
+                    "per particle:",
+                    100.0 * rows_all[0] / rows_all[1], all[0] / atoms, all[1] / atoms)
+      : fmt::format("per particle: {:.1f} half-list entries, {:.1f} gather-row entries,",
+                    all[0] / atoms, all[1] / atoms);
   utils::logmesg(lmp,
                  "pair sph/astro neighbour search: lists made {} times after LAMMPS' builds "
                  "and {} times inside a step, extended {} times inside a step for grown h "
-                 "(most on a rank); ",
-                 builds_max[0], builds_max[1], builds_max[2]);
-  if (rows_all[1] > 0)    // individual steps: rows made for the atoms when first active
-    utils::logmesg(lmp,
-                   "rows made for {:.1f} % of the particles' intervals between builds (those "
-                   "with an active particle in their tree leaf); per row made: {:.1f} reach-row "
-                   "entries (both directions of a pair), {:.1f} gather-row entries; ",
-                   100.0 * rows_all[0] / rows_all[1], all[0] / atoms, all[1] / atoms);
-  else
-    utils::logmesg(lmp, "per particle: {:.1f} half-list entries, {:.1f} gather-row entries; ",
-                   all[0] / atoms, all[1] / atoms);
-  utils::logmesg(lmp,
-                 "per particle: {:.1f} neighbours inside the kernel support, {:.2f} ghost atoms, "
-                 "{:.0f} bytes of lists and tree\n",
-                 all[2] / atoms, all[4] / atoms, all[5] / atoms);
+                 "(most on a rank); {} {:.1f} neighbours inside the kernel support, {:.2f} "
+                 "ghost atoms, {:.0f} bytes of lists and tree\n",
+                 builds_max[0], builds_max[1], builds_max[2], entries, all[2] / atoms,
+                 all[4] / atoms, all[5] / atoms);
 }
 
 double PairSPHAstro::init_one(int i, int j)
