@@ -8,6 +8,7 @@ Usage (from the repository root; ``source build/env.sh`` first or it is sourced 
 
     python3 tools/benchmark_scenes.py [--np 2] [--rows box1e4,box1e5,...]
         [--swift-bin PATH --swift-dir DIR] [--outdir build/output/benchmark_scenes]
+        [--individual-var NAME=VALUE ...]
 
 Rows (``--rows``, default all): ``box1e4``, ``box1e5``, ``box1e6`` (examples/benchmark, a
 uniform periodic box, fixed h and dt, 40/20/5 steps), ``box1e5i`` (the same box as the scenes
@@ -24,7 +25,8 @@ are the particle-updates fix sph/astro counts; ``sedov16i2``, ``sedov22i2``, ``s
 175 616 particles (``--swift-bin``: the swift executable, built with SPHENIX and the cubic
 spline as its repository describes; ``--swift-dir``: a folder with ``swift_sedov.yml`` and
 ``swift_sedov_ic.py ``; 2 threads, ``--hydro --limiter``). SWIFT is never part of this
-repository or of its tests; its rows are skipped when it is absent.
+repository or of its tests; its rows are skipped when it is absent. ``--individual-var
+kicks=pair`` runs the rows with individual steps with ``-var kicks pair`` as well.
 
 Each SPH-ASTRO row runs ``mpirun -np NP /usr/bin/time -f %M lmp ...`` and prints
 
@@ -106,8 +108,10 @@ _RSS = re.compile(r"RSS_KB (\d+)")
 _UPDATES = re.compile(r"fix sph/astro steps individual: (\S+) particle-updates")
 
 
-def run_lammps(name, np_ranks, outdir, env):
+def run_lammps(name, np_ranks, outdir, env, individual_vars=()):
     script, variables = SCENES[name]
+    if variables.get("steps") == "individual":
+        variables = dict(variables, **dict(individual_vars))
     work = os.path.join(outdir, name)
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
@@ -212,7 +216,16 @@ def main():
     parser.add_argument("--swift-dir", default=os.environ.get("SPH_ASTRO_SWIFT_DIR", ""))
     parser.add_argument("--outdir", default=os.path.join(ROOT, "build", "output",
                                                          "benchmark_scenes"))
+    parser.add_argument("--individual-var", action="append", default=[], metavar="NAME=VALUE",
+                        help="-var NAME VALUE for the rows with individual steps (e.g. "
+                             "kicks=pair); repeatable")
     args = parser.parse_args()
+    individual_vars = []
+    for item in args.individual_var:
+        name, sep, value = item.partition("=")
+        if not sep or not name:
+            parser.error(f"--individual-var '{item}' is not NAME=VALUE")
+        individual_vars.append((name, value))
     env = lammps_environment()
     os.makedirs(args.outdir, exist_ok=True)
     wanted = [r for r in args.rows.split(",") if r]
@@ -228,7 +241,7 @@ def main():
                 continue
             row = run_swift(name, SWIFT_ROWS[name], args.outdir, args.swift_bin, args.swift_dir)
         else:
-            row = run_lammps(name, args.np, args.outdir, env)
+            row = run_lammps(name, args.np, args.outdir, env, individual_vars)
         rows.append(row)
         print(f"{name}: N {row['N']}, wall {row['wall']:.1f} s, {row['steps']} steps, "
               f"RSS {row['rss_mb']:.0f} MB", flush=True)

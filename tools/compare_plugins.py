@@ -7,7 +7,7 @@
 Usage (from the repository root, after ``source build/env.sh``)::
 
     python3 tools/compare_plugins.py OLD_PLUGIN_DIR NEW_PLUGIN_DIR [--repeat 3]
-        [--scenes benchmark,sod,sedov16,sod_signal_cd] [--np 1] [--outdir DIR]
+        [--scenes benchmark,sod,sodi,sedov16,sod_signal_cd] [--np 1] [--outdir DIR]
 
 Each plugin directory holds a ``sphastroplugin.so`` (e.g. build/plugins of an older
 checkout). Every scene runs ``--repeat`` times with each plugin, alternating A, B, A, B, ...
@@ -33,6 +33,8 @@ SCENES = {
     "benchmark": ("examples/benchmark/in.benchmark", ["-var", "ncell", "18", "-var", "steps", "100"]),
     # the flagship: Sod, variable h (iterate), M4, classic viscosity
     "sod": ("examples/sod/in.sod", []),
+    # the same with individual timesteps (two bins: most particles active at most steps)
+    "sodi": ("examples/sod/in.sod", ["-var", "steps", "individual"]),
     # Sod with the signal viscosity, the Cullen-Dehnen switch and conductivity
     "sod_signal_cd": ("examples/sod/in.sod", ["-var", "visc", "signal", "-var", "switch", "cd",
                                               "-var", "cond", "1.0"]),

@@ -348,40 +348,45 @@ NeighView NeighbourLists::due(const double *h, const char *active)
 NeighView NeighbourLists::due_from_reach_rows(const char *active)
 {
   prepare(active);
+  double **x = atom->x;
   const int nlocal = atom->nlocal;
   if (static_cast<int>(due_numneigh_.size()) < nlocal) {
     due_numneigh_.resize(nlocal);
     due_firstneigh_.resize(nlocal);
   }
   due_ilist_.clear();
-  due_entries_.clear();
+  std::size_t total = 0;
+  for (int ii = 0; ii < inum_; ii++)
+    if (active[ilist_[ii]]) total += half_.numneigh[ilist_[ii]];
+  if (due_entries_.size() < total) due_entries_.resize(total);
+  std::size_t offset = 0;
   for (int ii = 0; ii < inum_; ii++) {
     const int i = ilist_[ii];
     if (!active[i]) continue;
     const int *row = half_.firstneigh[i];
     const int n = half_.numneigh[i];
-    const double *xi = tree_.build_position(tree_.slot(i));
-    const std::size_t start = due_entries_.size();
-    due_entries_.resize(start + n);
-    int *out = due_entries_.data() + start;
+    int *out = due_entries_.data() + offset;
     int m = 0;
-    for (int k = 0; k < n; k++) {
-      const int j = row[k];
-      out[m] = j;
-      // (a pair of two active atoms by the half rule: once, in the lower owned atom's row or
-      // on the rank the build positions choose)
-      m += !active[j] ||
-          (j < nlocal ? i < j : half_rule_.keeps_at(xi, tree_.build_position(tree_.slot(j)), i, j));
+    // the row in atom order: owned j < i, owned j > i, ghosts. An inactive partner is always
+    // evaluated here; an active one by the half rule: an owned j once, in the lower index's row;
+    // a ghost on the rank the rule chooses at the current positions (both ranks hold them: the
+    // owner's and the ghost's copy, which LAMMPS sends every step)
+    const int *owned_end = std::lower_bound(row, row + n, nlocal);
+    const int *above_i = std::upper_bound(row, owned_end, i);
+    for (const int *e = row; e < above_i; e++) {
+      out[m] = *e;
+      m += !active[*e];
     }
-    due_entries_.resize(start + m);
+    for (const int *e = above_i; e < owned_end; e++) out[m++] = *e;
+    for (const int *e = owned_end; e < row + n; e++) {
+      const int j = *e;
+      out[m] = j;
+      m += !active[j] || half_rule_.keeps(x, i, j);
+    }
     due_numneigh_[i] = m;
+    due_firstneigh_[i] = out;
     due_ilist_.push_back(i);
-  }
-  // (the entries are in place now: their addresses)
-  std::size_t offset = 0;
-  for (int i : due_ilist_) {
-    due_firstneigh_[i] = due_entries_.data() + offset;
-    offset += due_numneigh_[i];
+    offset += m;
   }
   return {static_cast<int>(due_ilist_.size()), due_ilist_.data(), due_numneigh_.data(),
           due_firstneigh_.data()};

@@ -31,11 +31,12 @@
 // eager build finds, with the radii of the extensions since). These reach rows hold both
 // directions of a pair, j with r_ij < R max(hl_i, hl_j) + pad, and a step's pairs are taken
 // from its active atoms' rows: (i, j) with i active is evaluated in i's row when j is inactive,
-// and by the half rule when both are active (i < j for owned j; the build positions' rule for
-// a ghost j, whose owner decides the reverse). Each pair is then evaluated once on one rank,
-// and with every atom active the pairs and their order are those of the half list. With
-// newton off a rank must also evaluate its inactive atoms' pairs with active ghosts, so the
-// lists are made whole and the due pairs selected from the half list (DuePairs).
+// and by the half rule when both are active (i < j for owned j; for a ghost j the rule at the
+// current positions, which both ranks hold alike and by which j's owner decides the reverse).
+// Each pair is then evaluated once on one rank, and with every atom active at the build the
+// pairs and their order are those of the half list. With newton off a rank must also evaluate
+// its inactive atoms' pairs with active ghosts, so the lists are made whole and the due pairs
+// selected from the half list (DuePairs).
 
 #ifndef LMP_SPH_ASTRO_NEIGHBOUR_LISTS_H
 #define LMP_SPH_ASTRO_NEIGHBOUR_LISTS_H
