@@ -22,26 +22,40 @@
 
 using namespace sph_astro_test;
 
+namespace {
+// 500 atoms of a jittered fcc lattice in a periodic box of side 5 with ghosts out to 3 (one
+// rank: periodic images), no pair forces
+std::unique_ptr<LAMMPS_NS::LAMMPS> jittered_box(const std::string &newton)
+{
+  auto lmp = open_lammps();
+  commands(lmp,
+           {"units lj", "atom_style atomic", "atom_modify map array sort 0 0.0", "newton " + newton,
+            "boundary p p p", "lattice fcc 4.0", "region box block 0 5 0 5 0 5", "create_box 1 box",
+            "create_atoms 1 box", "displace_atoms all random 0.05 0.05 0.05 4711 units box",
+            "mass 1 1.0", "pair_style zero 2.0", "pair_coeff * *", "neighbor 0.1 bin",
+            "comm_modify cutoff 3.0", "run 0"});
+  return lmp;
+}
+
+// h from 0.5 to 0.6 by atom ID (owned and ghost atoms)
+std::vector<double> spread_h(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp)
+{
+  const auto *atom = lmp->atom;
+  std::vector<double> h(atom->nlocal + atom->nghost);
+  for (std::size_t i = 0; i < h.size(); i++) h[i] = 0.5 + 0.1 * ((atom->tag[i] * 37) % 11) / 10.0;
+  return h;
+}
+}    // namespace
+
 TEST(NeighbourLists, AnExtensionAddsEveryPairTheGrownSupportsReach)
 {
   for (const std::string newton : {"on", "off"}) {
-    auto lmp = open_lammps();
-    commands(lmp,
-             {"units lj", "atom_style atomic", "atom_modify map array sort 0 0.0",
-              "newton " + newton, "boundary p p p", "lattice fcc 4.0",
-              "region box block 0 5 0 5 0 5", "create_box 1 box", "create_atoms 1 box",
-              "displace_atoms all random 0.05 0.05 0.05 4711 units box", "mass 1 1.0",
-              "pair_style zero 2.0", "pair_coeff * *", "neighbor 0.1 bin", "comm_modify cutoff 3.0",
-              "run 0"});
+    auto lmp = jittered_box(newton);
     auto *atom = lmp->atom;
     const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
     const double R = 2.0, L = lmp->domain->prd[0];
-    // h 0.5 .. 0.6; atoms 1..6 grow by 1.3 (their ghost images with them)
-    std::vector<double> h(nall);
-    auto h_of = [](int tag) {
-      return 0.5 + 0.1 * ((tag * 37) % 11) / 10.0;
-    };
-    for (int i = 0; i < nall; i++) h[i] = h_of(atom->tag[i]);
+    // atoms 1..6 grow by 1.3 below (their ghost images with them)
+    std::vector<double> h = spread_h(lmp);
     SPHAstro::NeighbourLists lists(lmp.get());
     int sph_type[2] = {0, 1};
     const SPHAstro::SearchSettings settings{R, 1.1, 1.4, true, newton == "on", sph_type};
@@ -109,19 +123,11 @@ TEST(NeighbourLists, AnExtensionAddsEveryPairTheGrownSupportsReach)
 TEST(NeighbourLists, RowsMadeForTheActiveAtomsGiveEachDuePairOnce)
 {
   for (const std::string newton : {"on", "off"}) {
-    auto lmp = open_lammps();
-    commands(lmp,
-             {"units lj", "atom_style atomic", "atom_modify map array sort 0 0.0",
-              "newton " + newton, "boundary p p p", "lattice fcc 4.0",
-              "region box block 0 5 0 5 0 5", "create_box 1 box", "create_atoms 1 box",
-              "displace_atoms all random 0.05 0.05 0.05 4711 units box", "mass 1 1.0",
-              "pair_style zero 2.0", "pair_coeff * *", "neighbor 0.1 bin", "comm_modify cutoff 3.0",
-              "run 0"});
+    auto lmp = jittered_box(newton);
     auto *atom = lmp->atom;
     const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
     const double R = 2.0, L = lmp->domain->prd[0];
-    std::vector<double> h(nall);
-    for (int i = 0; i < nall; i++) h[i] = 0.5 + 0.1 * ((atom->tag[i] * 37) % 11) / 10.0;
+    std::vector<double> h = spread_h(lmp);
     int sph_type[2] = {0, 1};
     SPHAstro::SearchSettings settings{R, 1.1, 1.4, true, newton == "on", sph_type};
     settings.active_only = true;
