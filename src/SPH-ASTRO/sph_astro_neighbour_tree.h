@@ -17,7 +17,7 @@
 // the range of r: a particle in a dense clump does not scan the neighbourhood of the largest h.
 //
 // Nodes split their points at the middle of their box's longest side (cells of regular shape,
-// as the octrees of those codes). The tree keeps the positions and radii of the build in its
+// as GADGET's octree has). The tree keeps the positions and radii of the build in its
 // own order (contiguous leaves).
 // query_leaf() serves all particles of one leaf at once: one traversal collects the candidates
 // of the leaf's box, and each particle of the leaf then keeps its own from them.
