@@ -416,8 +416,15 @@ double NeighbourLists::memory_usage() const
       half_.numneigh.capacity() * (sizeof(int) + sizeof(int *)) +
       full_.numneigh.capacity() * (sizeof(int) + sizeof(int *)) +
       (ilist_.capacity() + members_.capacity()) * sizeof(int);
-  return per_atom + due_.memory_usage() + tree_.memory_usage() + half_.rows.memory_usage() +
-      full_.rows.memory_usage() + (scratch_.capacity() + full_scratch_.capacity()) * sizeof(int);
+  // (individual steps with newton on: the leaves' flags, the atoms' leaves, the due pairs)
+  const double due_pairs = leaf_made_.capacity() * sizeof(char) +
+      (leaf_of_.capacity() + due_ilist_.capacity() + due_numneigh_.capacity() +
+       due_entries_.capacity()) *
+          sizeof(int) +
+      due_firstneigh_.capacity() * sizeof(int *);
+  return per_atom + due_pairs + due_.memory_usage() + tree_.memory_usage() +
+      half_.rows.memory_usage() + full_.rows.memory_usage() +
+      (scratch_.capacity() + full_scratch_.capacity()) * sizeof(int);
 }
 
 }    // namespace SPHAstro
