@@ -58,14 +58,12 @@ NeighView DuePairs::select(const NeighView &half, int nlocal, int nall, const ch
     }
   }
   ilist_.clear();
-  active_rows_.clear();
   for (int ii = 0; ii < half.inum; ii++) {
     const int i = half.ilist[ii];
     if (active[i]) {
       numneigh_[i] = half.numneigh[i];
       firstneigh_[i] = half.firstneigh[i];
       ilist_.push_back(i);
-      active_rows_.push_back(i);
     } else if (numneigh_[i] > 0) {
       firstneigh_[i] = entries_.data() + offset_[i] - numneigh_[i];
       ilist_.push_back(i);
@@ -77,8 +75,7 @@ NeighView DuePairs::select(const NeighView &half, int nlocal, int nall, const ch
 double DuePairs::memory_usage() const
 {
   return static_cast<double>(col_start_.capacity() + col_rows_.capacity() + ilist_.capacity() +
-                             numneigh_.capacity() + offset_.capacity() + entries_.capacity() +
-                             active_rows_.capacity()) *
+                             numneigh_.capacity() + offset_.capacity() + entries_.capacity()) *
       sizeof(int) +
       static_cast<double>(firstneigh_.capacity()) * sizeof(int *);
 }

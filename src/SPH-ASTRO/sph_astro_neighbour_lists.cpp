@@ -66,21 +66,14 @@ void NeighbourLists::update(const double *h, const SearchSettings &s)
   settings_ = s;
   settings_.active_only = s.active_only && s.newton;
   // LAMMPS built in this step (ago 0) and not yet for these lists: a new step, or a new run
-  // (its setup builds at the step the previous run ended on); or the lists were made for the
-  // other kind of step (a run 0 between runs of individual steps: made whole again)
-  const bool lammps_built = neighbor->ago == 0 && (stale_ || lmp->update->ntimestep != build_step_);
-  if (built_ && !lammps_built && settings_.active_only == active_only_) return;
+  // (its setup builds at the step the previous run ended on). The kind of step (active_only)
+  // is that of the build: it changes only with a new run, whose init() invalidates the lists
+  if (built_ && !(neighbor->ago == 0 && (stale_ || lmp->update->ntimestep != build_step_))) return;
   stale_ = false;
-  if (!built_ || lammps_built) {
-    build_step_ = lmp->update->ntimestep;
-    build(h, neighbor->skin);
-    motion_ = 0.5 * neighbor->skin;
-    stats_.builds++;
-  } else {    // (as an in-step build: atoms up to skin from here before LAMMPS' next build)
-    build(h, 2.0 * neighbor->skin);
-    motion_ = neighbor->skin;
-    stats_.step_builds++;
-  }
+  build_step_ = lmp->update->ntimestep;
+  build(h, neighbor->skin);
+  motion_ = 0.5 * neighbor->skin;
+  stats_.builds++;
 }
 
 NeighView NeighbourLists::half(const double *h)
