@@ -12,7 +12,12 @@
 
 #include "lammps_fixture.h"
 
+#include "pair_sph_astro.h"
+#include "sph_astro_gravity_kernel.h"
+#include "sph_astro_kernel.h"
+
 #include "compute.h"
+#include "fix.h"
 #include "force.h"
 #include "kspace.h"
 #include "pair.h"
@@ -246,14 +251,13 @@ TEST(GravityPair, HybridOverlayWithSPH)
   EXPECT_NE(err.find("kernel m4 differs from the kernel wendland/c4"), std::string::npos) << err;
 }
 
-// a cold self-gravitating gas ball (SPH + gravity, variable h by iteration with grad-h terms)
-// falling in for time T with fixed dt: relative total-energy error (K + U + W)
-static double collapse_energy_error(double dt, const std::string &zeta, double *hratio = nullptr)
+// a cold gas ball of radius 2.5 lattice units (SPH + gravity, variable h by iteration with grad-h
+// terms, lattice displaced at random) under fix sph/astro FIX; gravity: the pair sub-style's
+// arguments after its name
+static void falling_ball(const std::unique_ptr<LAMMPS> &lmp, const std::string &gravity,
+                         const std::string &fix)
 {
-  auto lmp = open_lammps();
   const double h = 1.2 * std::cbrt(0.25);
-  const double T = 0.4;
-  const int nsteps = static_cast<int>(std::lround(T / dt));
   commands(lmp,
            {"units lj",
             "atom_style atomic",
@@ -267,21 +271,29 @@ static double collapse_energy_error(double dt, const std::string &zeta, double *
             "displace_atoms all random 0.05 0.05 0.05 4711 units box",
             "mass 1 0.25",
             "pair_style hybrid/overlay sph/astro kernel m4 eos ideal 1.6666667 viscosity "
-            "classic 1.0 2.0 sph/astro/gravity 30 zeta " +
-                zeta,
+            "classic 1.0 2.0 sph/astro/gravity " +
+                gravity,
             "pair_coeff * * sph/astro",
             "pair_coeff * * sph/astro/gravity",
-            "fix gas all sph/astro dt fixed",
+            "fix gas all sph/astro " + fix,
             "fix hvar all sph/astro/h iterate hfact 1.2 tol 1e-10 margin 2.5",
             "set group all d_h " + num(h),
             "set group all d_u 0.05",
             "neighbor " + num(0.3 * h) + " bin",
             "neigh_modify every 1 delay 0 check yes",
-            "compute sum all sph/astro/global",
-            "thermo_style custom step c_sum[12] c_sum[13]",
-            "thermo " + std::to_string(nsteps),
-            "timestep " + num(dt),
-            "run 0"});
+            "compute sum all sph/astro/global"});
+}
+
+// the ball falling in for time T with fixed dt: relative total-energy error (K + U + W)
+static double collapse_energy_error(double dt, const std::string &zeta, double *hratio = nullptr)
+{
+  auto lmp = open_lammps();
+  const double T = 0.4;
+  const int nsteps = static_cast<int>(std::lround(T / dt));
+  falling_ball(lmp, "30 zeta " + zeta, "dt fixed");
+  commands(lmp,
+           {"thermo_style custom step c_sum[12] c_sum[13]", "thermo " + std::to_string(nsteps),
+            "timestep " + num(dt), "run 0"});
   const double hmin0 = global_vector(lmp, "sum", 13)[12];
   commands(lmp, {"run " + std::to_string(nsteps)});
   const auto end = global_vector(lmp, "sum", 18);
@@ -310,6 +322,82 @@ TEST(GravityPair, AdaptiveSofteningConservesEnergyToSecondOrder)
   EXPECT_GT(n3, 10.0 * z3);
   EXPECT_GT(n3, 0.5 * n2);    // without zeta the error does not converge away
 }
+
+// zeta_i = -h_i/(3 rho_i) sum_{j != i, r_ij < R h_i} m_j dphi(r_ij, h_i)/dh_i (Price & Monaghan
+// 2007, eq. 26) of the direct summation, whose neighbours a tree finds, against all pairs
+TEST(GravityPair, ZetaOfTheDirectSumIsTheSumOverAllPairs)
+{
+  auto lmp = open_lammps();
+  falling_ball(lmp, "30", "dt fixed");
+  commands(lmp, {"timestep 0.01", "run 5"});
+  int ncol = 0;
+  const auto *zeta = static_cast<const double *>(
+      lmp->force->pair_match("^sph/astro/gravity$", 0, 0)->extract_peratom("zeta", ncol));
+  ASSERT_NE(zeta, nullptr);
+  auto *sph = lmp->force->pair_match("^sph/astro$", 0, 0);
+  ASSERT_NE(sph, nullptr);
+  int flag, cols;
+  const double *h = lmp->atom->dvector[lmp->atom->find_custom("h", flag, cols)];
+  const double *rho = lmp->atom->dvector[lmp->atom->find_custom("rho", flag, cols)];
+  const auto cap = static_cast<LAMMPS_NS::PairSPHAstro *>(sph)->h_cap();
+  double **x = lmp->atom->x;
+  const int n = lmp->atom->nlocal;
+  ASSERT_EQ(n, lmp->atom->natoms);    // one rank: every atom is owned
+  const double R = SPHAstro::kernel_radius(SPHAstro::KernelType::CUBIC);
+  int inside = 0;
+  for (int i = 0; i < n; i++) {
+    double sum = 0.0;
+    for (int j = 0; j < n; j++) {
+      const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
+      const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
+      if (j == i || !(r < R * h[i])) continue;
+      sum += 0.25 * SPHAstro::softened_dphidh(SPHAstro::KernelType::CUBIC, r, h[i]);
+      inside++;
+    }
+    const double expected = h[i] >= cap ? 0.0 : -h[i] / (3.0 * rho[i]) * sum;
+    EXPECT_NEAR(zeta[i], expected, 1e-13 * std::fabs(expected)) << "atom " << lmp->atom->tag[i];
+  }
+  EXPECT_GT(inside, 20 * n);    // each atom has its kernel neighbours
+}
+
+// individual timesteps (a ball with a hot core): the gravity pair leaves out the pairs of two
+// inactive atoms unless the energy is tallied; the active atoms' forces, and so the run, do not depend on it (thermo
+// output at every step tallies the energy at every step)
+class GravityIndividualSteps : public ::testing::TestWithParam<const char *> {};
+
+TEST_P(GravityIndividualSteps, PairsOfInactiveAtomsDoNotChangeTheRun)
+{
+  const bool msm = std::string(GetParam()) == "msm";
+  std::map<int, double> x[2], v[2];
+  double bins = 0.0, updates = 0.0, steps = 0.0, natoms = 0.0;
+  for (int every : {1, 1000}) {
+    auto lmp = open_lammps();
+    falling_ball(lmp, msm ? "1.5" : "30", "courant 0.3 steps individual tend 0.4");
+    if (msm) commands(lmp, {"kspace_style msm/sph/astro/gravity 1e-5"});
+    // a hot core: its particles step short, the cold ones long
+    commands(lmp, {"region core sphere 0 0 0 1.0 units box", "set region core d_u 3.0"});
+    commands(lmp,
+             {"thermo_style custom step c_sum[12] f_gas[5]", "thermo " + std::to_string(every),
+              "run 100000"});
+    const int k = every == 1 ? 0 : 1;
+    x[k] = per_atom(lmp, "x", 0);
+    v[k] = per_atom(lmp, "v", 1);
+    bins = lmp->modify->get_fix_by_id("gas")->compute_vector(5);
+    updates = lmp->modify->get_fix_by_id("gas")->compute_vector(6);
+    steps = static_cast<double>(lmp->update->ntimestep);
+    natoms = static_cast<double>(lmp->atom->natoms);
+  }
+  // several bins, so that most steps evaluate a part of the atoms
+  EXPECT_GE(bins, 2.0);
+  EXPECT_LT(updates, 0.75 * steps * natoms) << updates << " updates in " << steps << " steps";
+  ASSERT_EQ(x[0].size(), x[1].size());
+  for (const auto &[id, value] : x[0]) {
+    EXPECT_EQ(x[1][id], value) << "atom " << id;
+    EXPECT_EQ(v[1][id], v[0][id]) << "atom " << id;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(GravityPair, GravityIndividualSteps, ::testing::Values("direct", "msm"));
 
 TEST(GravityPair, RestartContinuesBitForBit)
 {

@@ -134,6 +134,8 @@ class PairSPHAstro : public Pair {
     active_ = active;
     record_pair_forces_ = record;
   }
+  // the active flags of owned and ghost atoms set for this step (null: global stepping)
+  const char *active_flags() const { return active_; }
   // the pairs of the latest evaluation with individual steps (the limiter's neighbours)
   const SPHAstro::NeighView &evaluated_pairs() const;
   // the pressure and viscous force of each pair of the latest evaluation with individual

@@ -48,6 +48,7 @@
 #include "pair_sph_astro.h"
 #include "sph_astro_gravity_kernel.h"
 #include "sph_astro_gravity_kspace.h"
+#include "sph_astro_neighbour_tree.h"
 #include "sph_astro_options.h"
 
 #include "sph_astro_pair_coeff.h"
@@ -65,6 +66,7 @@
 #include "update.h"
 #include "utils.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -88,6 +90,7 @@ PairSPHAstroGravity::PairSPHAstroGravity(LAMMPS *lmp) : Pair(lmp)
   zeta_active_ = false;
   sph_ = nullptr;
   zeta_ = nullptr;
+  zeta_tree_ = new SPHAstro::NeighbourTree();
   nmax_ = 0;
   comm_stage_ = Stage::H;
   offset_ = 0;
@@ -107,6 +110,7 @@ PairSPHAstroGravity::~PairSPHAstroGravity()
 {
   if (copymode) return;
   delete state_;
+  delete zeta_tree_;
   memory->destroy(zeta_);
   if (allocated) {
     memory->destroy(setflag);
@@ -389,6 +393,12 @@ void PairSPHAstroGravity::gather_all()
                  MPI_DOUBLE, world);
   gather_counts_ = counts;
   gather_displs_ = displs;
+  const char *active = sph_ ? sph_->active_flags() : nullptr;
+  if (active) {
+    active_all_.resize(ntotal);
+    MPI_Allgatherv(active, nlocal, MPI_CHAR, active_all_.data(), counts.data(), displs.data(),
+                   MPI_CHAR, world);
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -437,15 +447,33 @@ void PairSPHAstroGravity::compute_zeta()
   for (int i = 0; i < nall; i++) zeta_[i] = 0.0;
 
   if (split_ == Split::NONE) {
-    const double *all = all_.data();
+    // the kernel neighbours of each owned atom among all gathered atoms, found by a tree over
+    // their positions and summed in the order of their index
+    double *all = all_.data();
     const int n = ntotal_;
+    zeta_points_.resize(n);
+    zeta_index_.resize(n);
+    zeta_radii_.assign(n, 0.0);
+    for (int gj = 0; gj < n; gj++) {
+      zeta_points_[gj] = all + 5 * gj;
+      zeta_index_[gj] = gj;
+    }
+    zeta_tree_->build(zeta_points_.data(), zeta_radii_.data(), zeta_index_.data(), n);
     for (int i = 0; i < nlocal; i++) {
       const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
       const double hi = h[i] > 0.0 ? h[i] : hfix;
       const double Rhsq = R * R * hi * hi;
       const int gi = offset_ + i;
+      // candidates a little beyond R h_i, so that the test below alone decides
+      const double c[3] = {xi, yi, zi};
+      zeta_found_.clear();
+      zeta_tree_->query(zeta_points_.data(), zeta_radii_.data(), c, R * hi * (1.0 + 1e-10), 0.0,
+                        0.0, [&](int gj, double) {
+                          zeta_found_.push_back(gj);
+                        });
+      std::sort(zeta_found_.begin(), zeta_found_.end());
       double sum = 0.0;
-      for (int gj = 0; gj < n; gj++) {
+      for (const int gj : zeta_found_) {
         const double *aj = all + 5 * gj;
         const double dx = xi - aj[0], dy = yi - aj[1], dz = zi - aj[2];
         const double rsq = dx * dx + dy * dy + dz * dz;
@@ -590,15 +618,22 @@ template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int e
     const double *zo_all = ZETA ? zo_all_.data() : nullptr;
     const int n = ntotal_;
     const int first = offset_, last = offset_ + nlocal;
+    // individual timesteps: the forces of inactive atoms are not used, so pairs of two inactive
+    // atoms are left out (unless energy or virial are tallied); an active atom's force sums
+    // the same terms in the same order either way
+    const char *active_all = (sph_ && sph_->active_flags() && !evflag) ? active_all_.data()
+                                                                       : nullptr;
     for (int i = 0; i < nlocal; i++) {
       const int gi = first + i;
       const double *ai = all + 5 * gi;
       const double xi = ai[0], yi = ai[1], zi = ai[2], mi = ai[3], hi = ai[4];
       const double zoi = ZETA ? zo_all[gi] : 0.0;
+      const char *partner_active = (active_all && !active_all[gi]) ? active_all : nullptr;
       double fxi = 0.0, fyi = 0.0, fzi = 0.0;
       for (int gj = 0; gj < n; gj++) {
         const bool mine = gj >= first && gj < last;
         if (mine && gj <= gi) continue;    // in-rank pairs once
+        if (partner_active && !partner_active[gj]) continue;
         const double *aj = all + 5 * gj;
         const double delx = xi - aj[0], dely = yi - aj[1], delz = zi - aj[2];
         const double rsq = delx * delx + dely * dely + delz * delz;
@@ -635,8 +670,11 @@ template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int e
   const int *ilist = list->ilist;
   const int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
+  // individual timesteps: pairs of two inactive atoms left out, as above (owned and ghost flags)
+  const char *active = (sph_ && !evflag) ? sph_->active_flags() : nullptr;
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
+    const char *partner_active = (active && !active[i]) ? active : nullptr;
     const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
     const double mi = rmass ? rmass[i] : mass[type[i]];
     const double hi = (hstate && hstate[i] > 0.0) ? hstate[i] : hfix;
@@ -651,6 +689,7 @@ template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int e
     const int jnum = numneigh[i];
     for (int jj = 0; jj < jnum; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
+      if (partner_active && !partner_active[j]) continue;
       const double delx = xi - x[j][0], dely = yi - x[j][1], delz = zi - x[j][2];
       const double rsq = delx * delx + dely * dely + delz * delz;
       if (rsq >= cutsq) continue;
@@ -715,7 +754,12 @@ void *PairSPHAstroGravity::extract_peratom(const char *name, int &ncol)
 
 double PairSPHAstroGravity::memory_usage()
 {
-  return nmax_ * sizeof(double) + Pair::memory_usage();
+  // (the gathered atoms of direct summation: capacity, as they are kept between steps)
+  const double gathered =
+      (all_.capacity() + zo_all_.capacity() + zeta_radii_.capacity()) * sizeof(double) +
+      zeta_points_.capacity() * sizeof(double *) +
+      (zeta_index_.capacity() + zeta_found_.capacity()) * sizeof(int) + active_all_.capacity();
+  return nmax_ * sizeof(double) + gathered + zeta_tree_->memory_usage() + Pair::memory_usage();
 }
 
 /* ----------------------------------------------------------------------

@@ -23,6 +23,7 @@ PairStyle(sph/astro/gravity,PairSPHAstroGravity);
 #include <vector>
 
 namespace SPHAstro {
+class NeighbourTree;
 struct StateIndex;
 enum class KernelType;
 }    // namespace SPHAstro
@@ -98,6 +99,13 @@ class PairSPHAstroGravity : public Pair {
   // direct summation: x, y, z, m, h of all atoms of all ranks (gather_all), zeta/Omega of all
   // atoms; this rank's atoms start at offset_
   std::vector<double> all_, zo_all_;
+  // individual timesteps (pair sph/astro's active flags): the flags of all atoms (gathered)
+  std::vector<char> active_all_;
+  // zeta of the gathered atoms: a tree over their positions finds each one's kernel neighbours
+  SPHAstro::NeighbourTree *zeta_tree_;
+  std::vector<double *> zeta_points_;
+  std::vector<double> zeta_radii_;
+  std::vector<int> zeta_index_, zeta_found_;
   std::vector<int> gather_counts_, gather_displs_;
   int offset_, ntotal_;
   void gather_all();
