@@ -285,6 +285,27 @@ TEST(FixSPHAstro, TimestepIsTheSmallestOfItsThreeCriteria)
   EXPECT_EQ(g[16], 0.0);      // no failures
 }
 
+// compute sph/astro/atom dt: each particle's own step; the global step is their smallest, and
+// the particles of the dense centre need shorter steps than those of the rarefied surface
+TEST(FixSPHAstro, EachParticlesOwnStepIsGivenAndTheGlobalStepIsTheSmallest)
+{
+  auto lmp = open_lammps();
+  gas(lmp, "ball", 6, PAIR, "sph/astro courant 0.3 force 0.25 energy 0.2");
+  commands(lmp,
+           {"fix hvar all sph/astro/h iterate margin 2.0", "compute own all sph/astro/atom dt",
+            "compute ownmin all reduce min c_own", "compute ownmax all reduce max c_own",
+            "thermo_style custom step dt c_ownmin c_ownmax", "run 30"});
+  const double lo = lmp->modify->get_compute_by_id("ownmin")->compute_scalar();
+  const double hi = lmp->modify->get_compute_by_id("ownmax")->compute_scalar();
+  EXPECT_DOUBLE_EQ(lo, lmp->update->dt);
+  EXPECT_GT(hi, 1.2 * lo);
+  // with dtmax no particle's own step is longer
+  commands(
+      lmp,
+      {"fix gas all sph/astro courant 0.3 force 0.25 energy 0.2 dtmax " + num(1.2 * lo), "run 1"});
+  EXPECT_LE(lmp->modify->get_compute_by_id("ownmax")->compute_scalar(), 1.2 * lo);
+}
+
 TEST(FixSPHAstro, StopsAtTend)
 {
   auto lmp = open_lammps();

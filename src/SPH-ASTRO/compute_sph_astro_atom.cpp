@@ -10,9 +10,10 @@
 ------------------------------------------------------------------------- */
 
 // compute ID group sph/astro/atom [rho] [h] [pressure] [cs] [u] [nneigh] [divv] [dudt]
-// [omega] [alpha] [bin] (rho ... dudt, in this order, when none is named; bin: the time bin
-// of fix sph/astro steps individual, the particle's step is dt_max / 2^bin). Pressure, sound speed, neighbour count
-// and div v are those of the latest force evaluation of pair sph/astro.
+// [omega] [alpha] [bin] [dt] (rho ... dudt, in this order, when none is named; bin: the time
+// bin of fix sph/astro steps individual, the particle's step is dt_max / 2^bin; dt: the step
+// of the particle's own timestep criteria of fix sph/astro). Pressure, sound speed, neighbour
+// count and div v are those of the latest force evaluation of pair sph/astro.
 
 #include "compute_sph_astro_atom.h"
 
@@ -20,8 +21,10 @@
 
 #include "atom.h"
 #include "error.h"
+#include "fix_sph_astro.h"
 #include "force.h"
 #include "memory.h"
+#include "modify.h"
 #include "pair_sph_astro.h"
 #include "sph_astro_options.h"
 #include "update.h"
@@ -38,9 +41,10 @@ ComputeSPHAstroAtom::ComputeSPHAstroAtom(LAMMPS *lmp, int narg, char **arg) :
   vector_ = nullptr;
   array_ = nullptr;
   pair_ = nullptr;
+  fix_ = nullptr;
 
-  static const char *names[] = {"rho",  "h",    "pressure", "cs",    "u",  "nneigh",
-                                "divv", "dudt", "omega",    "alpha", "bin"};
+  static const char *names[] = {"rho",  "h",    "pressure", "cs",    "u",   "nneigh",
+                                "divv", "dudt", "omega",    "alpha", "bin", "dt"};
   const int nnames = sizeof(names) / sizeof(names[0]);
   if (narg == 3)    // the state and hydro fields; omega and alpha when named
     for (int k = 0; k <= DUDT; k++) fields_.push_back(static_cast<Field>(k));
@@ -50,7 +54,7 @@ ComputeSPHAstroAtom::ComputeSPHAstroAtom(LAMMPS *lmp, int narg, char **arg) :
     if (k == nnames)
       error->all(FLERR,
                  "compute sph/astro/atom: unknown field '{}'; allowed: rho, h, pressure, cs, u, "
-                 "nneigh, divv, dudt, omega, alpha, bin",
+                 "nneigh, divv, dudt, omega, alpha, bin, dt",
                  arg[iarg]);
     fields_.push_back(static_cast<Field>(k));
   }
@@ -78,6 +82,16 @@ void ComputeSPHAstroAtom::init()
       error->all(FLERR,
                  "compute sph/astro/atom bin: there are no time bins; they belong to fix "
                  "sph/astro steps individual");
+  fix_ = nullptr;
+  for (int field : fields_)
+    if (field == DT) {
+      const auto fixes = modify->get_fix_by_style("^sph/astro$");
+      if (fixes.empty())
+        error->all(FLERR,
+                   "compute sph/astro/atom dt: the timestep criteria belong to fix sph/astro, "
+                   "which is not defined");
+      fix_ = dynamic_cast<FixSPHAstro *>(fixes.front());
+    }
 }
 
 void ComputeSPHAstroAtom::compute_peratom()
@@ -109,9 +123,14 @@ void ComputeSPHAstroAtom::compute_peratom()
   const bool gradh_omega = pair_->extract_peratom("omega_valid", ncol) != nullptr;
   const double *alpha = pair_->alpha_per_atom();
   // with pair sph/astro density continuity the counts take a neighbour pass: only if asked
+  const int *mask = atom->mask;
   bool has_nneigh = false;
   for (int field : fields_) has_nneigh = has_nneigh || field == NNEIGH;
-  const double *columns[11] = {atom->dvector[state_->rho],
+  if (fix_) {
+    dt_.resize(nlocal);
+    for (int i = 0; i < nlocal; i++) dt_[i] = (mask[i] & groupbit) ? fix_->own_timestep(i) : 0.0;
+  }
+  const double *columns[12] = {atom->dvector[state_->rho],
                                atom->dvector[state_->h],
                                static_cast<double *>(pair_->extract_peratom("pressure", ncol)),
                                static_cast<double *>(pair_->extract_peratom("soundspeed", ncol)),
@@ -121,8 +140,8 @@ void ComputeSPHAstroAtom::compute_peratom()
                                atom->dvector[state_->dudt],
                                gradh_omega ? omega : nullptr,
                                alpha,
-                               steps_.bin >= 0 ? atom->dvector[steps_.bin] : nullptr};
-  const int *mask = atom->mask;
+                               steps_.bin >= 0 ? atom->dvector[steps_.bin] : nullptr,
+                               fix_ ? dt_.data() : nullptr};
   const int nf = static_cast<int>(fields_.size());
   for (int k = 0; k < nf; k++) {
     const double *src = columns[fields_[k]];
@@ -141,5 +160,6 @@ void ComputeSPHAstroAtom::compute_peratom()
 
 double ComputeSPHAstroAtom::memory_usage()
 {
-  return static_cast<double>(nmax_) * fields_.size() * sizeof(double);
+  return static_cast<double>(nmax_) * fields_.size() * sizeof(double) +
+      dt_.capacity() * sizeof(double);
 }

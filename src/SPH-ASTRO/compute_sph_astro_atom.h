@@ -34,7 +34,7 @@ class ComputeSPHAstroAtom : public Compute {
   double memory_usage() override;
 
  private:
-  enum Field { RHO, H, PRESSURE, SOUNDSPEED, U, NNEIGH, DIVV, DUDT, OMEGA, ALPHA, BIN };
+  enum Field { RHO, H, PRESSURE, SOUNDSPEED, U, NNEIGH, DIVV, DUDT, OMEGA, ALPHA, BIN, DT };
   std::vector<Field> fields_;
   int nmax_;
   double *vector_;
@@ -42,6 +42,8 @@ class ComputeSPHAstroAtom : public Compute {
   SPHAstro::StateIndex *state_;
   SPHAstro::StepIndex steps_;    // time bins (fix sph/astro steps individual), if any
   class PairSPHAstro *pair_;
+  class FixSPHAstro *fix_;    // the timestep criteria (field dt)
+  std::vector<double> dt_;
 };
 
 }    // namespace LAMMPS_NS

@@ -704,12 +704,17 @@ void FixSPHAstro::wanted_steps(bool all)
   const int *mask = atom->mask;
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit) || !(all || steps_->active(i))) continue;
-    double dts[4];
-    criteria(i, dts);
-    double dt = MIN(MIN(dts[0], dts[1]), MIN(dts[2], dts[3]));
-    if (dtmax_ > 0.0) dt = MIN(dt, dtmax_);
-    wanted_[i] = dt;
+    wanted_[i] = own_timestep(i);
   }
+}
+
+double FixSPHAstro::own_timestep(int i) const
+{
+  double dts[4];
+  criteria(i, dts);
+  double dt = MIN(MIN(dts[0], dts[1]), MIN(dts[2], dts[3]));
+  if (dtmax_ > 0.0) dt = MIN(dt, dtmax_);
+  return dt;
 }
 
 bool FixSPHAstro::own_step(int i, double &dt) const

@@ -70,6 +70,10 @@ class FixSPHAstro : public Fix {
   // of its step; d2_vest and d_uest hold them at the current time)
   bool mid_step(int i) const;
 
+  // the step owned atom i's own timestep criteria allow (the smallest of them, at most dtmax;
+  // infinite where none applies), at its latest force evaluation
+  double own_timestep(int i) const;
+
   // reference total energy of a compute sph/astro/global (by compute ID): set at its first
   // evaluation, kept across restarts
   double reference_energy(const std::string &compute_id, double current);
