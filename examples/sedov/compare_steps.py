@@ -24,7 +24,8 @@ without the limiter goes visibly wrong: it misses the analytic shock radius by m
 ``nolimiter`` (``--kicks particle``: the blast stalls in sleeping gas) or, with ``--kicks
 pair``, also conserves energy worse than ``nolimiter`` or stops with an error (sleeping gas
 next to the blast is pushed by its pairs but heated over its own long step), and the limited
-run evaluates at most ``updates`` x the global run's particle-updates.
+run evaluates at most ``updates`` x the global run's particle-updates; ``energy`` (optional):
+the limited individual run's relative total-energy error is at most that in magnitude.
 """
 
 import argparse
@@ -96,8 +97,8 @@ def main(argv=None):
                         help="fix sph/astro vsig of all three runs (default viscosity, the "
                         "fix's default)")
     parser.add_argument("--outdir", default="sedov_compare_steps")
-    cli.add_assert_argument(parser, "fail (exit 1) unless l1, rshock, updates <= bound and "
-                            "nolimiter >= bound (see the docstring)")
+    cli.add_assert_argument(parser, "fail (exit 1) unless l1, rshock, updates, energy <= "
+                            "bound and nolimiter >= bound (see the docstring)")
     args = parser.parse_args(argv)
     rows = [run(name, args, extra, may_fail=name == "no limiter")
             for name, extra in variants(args.limiter, args.kicks, args.vsig)]
@@ -126,7 +127,8 @@ def main(argv=None):
         # but not heated, and the energy goes wrong or u negative (a stopped run counts: inf)
         failure = abs(nolim["rshock"]) if args.kicks == "particle" else max(
             abs(nolim["rshock"]) if "error" not in nolim else 0.0, abs(nolim["energy"]))
-        return cli.assert_bounds(args.bounds, {**diff, "nolimiter": failure},
+        return cli.assert_bounds(args.bounds,
+                                 {**diff, "nolimiter": failure, "energy": abs(ind["energy"])},
                                  lower=("nolimiter",), error=parser.error)
     return 0
 

@@ -186,7 +186,7 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
     if (xsph_eps_ > 0.0)
       error->all(FLERR, "fix sph/astro: xsph is not available with steps individual");
     steps_ = new IndividualSteps(lmp, this, limiter_levels_, pair_kicks_);
-    comm_forward = 2;    // step begin and end (IndividualSteps::pair_impulses)
+    comm_forward = 4;    // step begin, end, woken, end_then (IndividualSteps::pair_impulses)
     comm_reverse = 6;    // pair impulses and forces
     // [5] active particles this step, [6] occupied bins, [7] particle-updates, [8] woken
     size_vector = 8;

@@ -29,7 +29,8 @@ using namespace LAMMPS_NS;
 namespace SPHAstro {
 
 namespace {
-  constexpr int NSUM = 6;    // per-atom sums of pair_impulses()
+  constexpr int NSUM = 6;      // per-atom sums of pair_impulses()
+  constexpr int NTIMES = 4;    // per-atom times of pair_impulses(): begin, end, woken, end_then
   const double NO_PAIR_KICKS[NSUM] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};    // kicks particle
 
 }    // namespace
@@ -141,13 +142,18 @@ void IndividualSteps::start(const std::vector<double> &wanted, double dtmax, dou
   pair_impulses(pair, false);
   double **accel_other = atom->darray[idx_.accel_other];
   double **kick = atom->darray[idx_.kick];
+  double **lead = atom->darray[idx_.pair_lead];
+  const double *begin = atom->dvector[idx_.begin];
+  const double *end = atom->dvector[idx_.end];
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
     const double *sum = pair_kicks_ ? &sums_[NSUM * i] : NO_PAIR_KICKS;
+    const double half = 0.5 * (end[i] - begin[i]) * tick();
     for (int d = 0; d < 3; d++) {
       accel_other[i][d] = (f[i][d] - sum[3 + d]) / m;
       kick[i][d] = sum[d] / m;
+      lead[i][d] = (half * sum[3 + d] - sum[d]) / m;
     }
   }
   advance_to_next();
@@ -172,6 +178,7 @@ void IndividualSteps::kick_drift(double h_cap, bool evolve_u)
   double **accel = atom->darray[idx_.accel];
   double **accel_other = atom->darray[idx_.accel_other];
   double **kick = atom->darray[idx_.kick];
+  const double *const *lead = atom->darray[idx_.pair_lead];
   const double *dudt = atom->dvector[idx_.dudt];
   const double *divv = atom->dvector[idx_.divv];
   for (int i = 0; i < nlocal; i++) {
@@ -192,9 +199,14 @@ void IndividualSteps::kick_drift(double h_cap, bool evolve_u)
       if (evolve_u) u[i] += half * dudt[i];
     }
     for (int d = 0; d < 3; d++) x[i][d] += dt * v[i][d];
-    // predicted to the end of this LAMMPS step, from the middle of the particle's step
+    // predicted to the end of this LAMMPS step, from the middle of the particle's step; with
+    // kicks pair, the pairs on a shorter interval than that step have kicked it further
+    // (their lead is the part of the prediction they have given)
     const double tau = (ti_next_ - 0.5 * (begin[i] + end[i])) * t;
-    for (int d = 0; d < 3; d++) vest[i][d] = v[i][d] + tau * accel[i][d];
+    if (pair_kicks_)
+      for (int d = 0; d < 3; d++) vest[i][d] = v[i][d] + tau * accel[i][d] + lead[i][d];
+    else
+      for (int d = 0; d < 3; d++) vest[i][d] = v[i][d] + tau * accel[i][d];
     uest[i] = evolve_u ? u[i] + tau * dudt[i] : u[i];
     // rho and h follow the last div v (active particles: the h iteration's first guess)
     if (h_cap > 0.0) h[i] = std::min(h[i] * std::exp(dt_over_d * divv[i]), h_cap);
@@ -235,6 +247,7 @@ void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
   const double *end = atom->dvector[idx_.end];
   double **accel = atom->darray[idx_.accel];
   double **accel_other = atom->darray[idx_.accel_other];
+  double **lead = atom->darray[idx_.pair_lead];
   double *dudt_kept = atom->dvector[idx_.dudt];
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) continue;
@@ -243,6 +256,7 @@ void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
     const double *sum = pair_kicks_ ? &sums_[NSUM * i] : NO_PAIR_KICKS;
     for (int d = 0; d < 3; d++) v[i][d] += sum[d] / m;
     if (!active_[i]) {    // other forces of this step are not its: its last evaluation's
+      for (int d = 0; d < 3; d++) lead[i][d] -= sum[d] / m;
       for (int d = 0; d < 3; d++) f[i][d] = m * accel[i][d];
       dudt[i] = dudt_kept[i];
       continue;
@@ -279,11 +293,23 @@ void IndividualSteps::end_of_step(const std::vector<double> &wanted, PairSPHAstr
   const int nlocal = atom->nlocal;
   const int *mask = atom->mask;
   double **kick = atom->darray[idx_.kick];
+  double **lead = atom->darray[idx_.pair_lead];
+  const double *begin = atom->dvector[idx_.begin];
+  const double *end = atom->dvector[idx_.end];
   for (int i = 0; pair_kicks_ && i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
     const double *sum = &sums_[NSUM * i];
     for (int d = 0; d < 3; d++) kick[i][d] = sum[d] / m;
+    // lead: sum_j F_ij (t_mid,i - t_mid,ij) / m, all pairs of an active particle anew (its
+    // step's middle is half a step ahead; a pair's is w_ij ahead); an inactive one's
+    // pairs evaluated now have kicked it by sum_j F_ij w_ij further
+    if (active_[i]) {
+      const double half = 0.5 * (end[i] - begin[i]) * tick();
+      for (int d = 0; d < 3; d++) lead[i][d] = (half * sum[3 + d] - sum[d]) / m;
+    } else {
+      for (int d = 0; d < 3; d++) lead[i][d] -= sum[d] / m;
+    }
   }
   advance_to_next();
 }
@@ -316,11 +342,14 @@ void IndividualSteps::assign_bins(const std::vector<double> &wanted, bool fresh,
     bins_[i] = fresh ? want : TimeBins::next_bin(static_cast<int>(bin[i]), want, ti_now_);
   }
   if (levels_ > 0) limit(pair);
+  double *woken = atom->dvector[idx_.woken];
+  double *end_then = atom->dvector[idx_.end_then];
   for (int i = 0; i < nlocal; i++) {
     if (!active_[i]) continue;
     bin[i] = bins_[i];
     begin[i] = ti_now_;
-    end[i] = ti_now_ + TimeBins::ticks(static_cast<int>(bins_[i]));
+    end[i] = end_then[i] = ti_now_ + TimeBins::ticks(static_cast<int>(bins_[i]));
+    woken[i] = -1.0;
   }
 }
 
@@ -366,7 +395,11 @@ void IndividualSteps::limit(PairSPHAstro *pair)
   const double *begin = atom->dvector[idx_.begin];
   double *end = atom->dvector[idx_.end];
   double **accel_other = atom->darray[idx_.accel_other];
+  const double *const *accel = atom->darray[idx_.accel];
+  double **lead = atom->darray[idx_.pair_lead];
   const double *dudt = atom->dvector[idx_.dudt];
+  double *woken = atom->dvector[idx_.woken];
+  double *end_then = atom->dvector[idx_.end_then];
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit) || !(required_[i] > bins_[i])) continue;
     if (active_[i]) {
@@ -387,7 +420,14 @@ void IndividualSteps::limit(PairSPHAstro *pair)
       v[i][d] += shift * accel_other[i][d];
       woken_dx_.push_back(shift * since * accel_other[i][d]);
     }
+    // its step's middle moves by shift, its pairs' do not
+    if (pair_kicks_)
+      for (int d = 0; d < 3; d++) lead[i][d] += shift * (accel[i][d] - accel_other[i][d]);
     u[i] += shift * dudt[i];
+    if (woken[i] < 0.0) {    // the end its pairs opened with until now (pair_impulses)
+      woken[i] = ti_now_;
+      end_then[i] = end[i];
+    }
     end[i] = new_end;
     bin[i] = required_[i];
     woken_ += 1.0;
@@ -396,24 +436,32 @@ void IndividualSteps::limit(PairSPHAstro *pair)
 
 // the pairs of the latest force evaluation kick both their atoms with the same impulse
 // F_ij w_ij (Springel 2010, MNRAS 401, 791, sec. 7: a pair is integrated on the shorter step of
-// its two atoms). The pair's interval runs from one time either atom is active to the next:
-// closing, at the evaluation (ti_next_), w = (ti_next_ - max(begin_i, begin_j)) / 2; opening,
-// after the new bins (at ti_now_), w = (min(end_i, end_j) - ti_now_) / 2. Per owned atom:
-// sums_[6i..6i+2] = sum_j F_ij w_ij, [6i+3..6i+5] = sum_j F_ij (with the ghosts' parts)
+// its two atoms). The pair's interval runs from one time either atom is active to the next.
+// Opening, after the new bins (at ti_now_): w_o = (min(end_i, end_j) - t_o) / 2, t_o = ti_now_.
+// Closing, at the evaluation (ti_next_): w = (ti_next_ - t_o) - w_o, the rest of the interval,
+// with t_o = max(begin_i, begin_j) and w_o from the ends the atoms had at t_o (an atom the
+// limiter woke after t_o had d_step_end_then): w = w_o unless a wake shortened the interval.
+// Per owned atom: sums_[6i..6i+2] = sum_j F_ij w_ij, [6i+3..6i+5] = sum_j F_ij (with the
+// ghosts' parts)
 void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing)
 {
   if (!pair_kicks_) return;
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
-  if (times_.size() < 2 * static_cast<std::size_t>(nall)) times_.resize(2 * nall);
+  if (times_.size() < NTIMES * static_cast<std::size_t>(nall)) times_.resize(NTIMES * nall);
   const double *begin = atom->dvector[idx_.begin];
   const double *end = atom->dvector[idx_.end];
+  const double *woken = atom->dvector[idx_.woken];
+  const double *end_then = atom->dvector[idx_.end_then];
   for (int i = 0; i < nlocal; i++) {
-    times_[2 * i] = begin[i];
-    times_[2 * i + 1] = end[i];
+    double *ti = &times_[NTIMES * i];
+    ti[0] = begin[i];
+    ti[1] = end[i];
+    ti[2] = woken[i];
+    ti[3] = end_then[i];
   }
   comm_ = Comm::TIMES;
-  comm->forward_comm(owner_, 2);
+  comm->forward_comm(owner_, NTIMES);
   sums_.assign(NSUM * static_cast<std::size_t>(nall), 0.0);
   const double half_tick = 0.5 * tick();
   double **x = atom->x;    // (those of the force evaluation: no drift since)
@@ -421,9 +469,15 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing)
     const int i = p.i, j = p.j >= 0 ? p.j : ~p.j;
     const double f[3] = {(x[i][0] - x[j][0]) * p.fpair, (x[i][1] - x[j][1]) * p.fpair,
                          (x[i][2] - x[j][2]) * p.fpair};
-    const double w = half_tick *
-        (closing ? ti_next_ - std::max(times_[2 * i], times_[2 * j])
-                 : std::min(times_[2 * i + 1], times_[2 * j + 1]) - ti_now_);
+    const double *ti = &times_[NTIMES * i], *tj = &times_[NTIMES * j];
+    double w;
+    if (closing) {
+      const double opened = std::max(ti[0], tj[0]);
+      const double end_i = ti[2] > opened ? ti[3] : ti[1], end_j = tj[2] > opened ? tj[3] : tj[1];
+      w = half_tick * (2.0 * ti_next_ - opened - std::min(end_i, end_j));
+    } else {
+      w = half_tick * (std::min(ti[1], tj[1]) - ti_now_);
+    }
     double *si = &sums_[NSUM * i];
     for (int d = 0; d < 3; d++) {
       si[d] += w * f[d];
@@ -450,10 +504,14 @@ void IndividualSteps::advance_to_next()
   double *end = atom->dvector[idx_.end];
   const double cycle = TimeBins::cycle();
   if (ti_now_ >= cycle) {
+    double *woken = atom->dvector[idx_.woken];
+    double *end_then = atom->dvector[idx_.end_then];
     for (int i = 0; i < nlocal; i++) {
       if (!(mask[i] & owner_->groupbit)) continue;
       begin[i] -= cycle;
       end[i] -= cycle;
+      end_then[i] -= cycle;
+      if (woken[i] >= 0.0) woken[i] -= cycle;
     }
     ti_now_ -= cycle;
   }
@@ -524,11 +582,9 @@ std::string IndividualSteps::shortest_step() const
 int IndividualSteps::pack_forward_comm(int n, int *list, double *buf)
 {
   if (comm_ == Comm::TIMES) {
-    for (int k = 0; k < n; k++) {
-      buf[2 * k] = times_[2 * list[k]];
-      buf[2 * k + 1] = times_[2 * list[k] + 1];
-    }
-    return 2 * n;
+    for (int k = 0; k < n; k++)
+      for (int c = 0; c < NTIMES; c++) buf[NTIMES * k + c] = times_[NTIMES * list[k] + c];
+    return NTIMES * n;
   }
   for (int k = 0; k < n; k++)
     buf[k] = comm_ == Comm::ACTIVE ? static_cast<double>(active_[list[k]]) : bins_[list[k]];
@@ -538,7 +594,7 @@ int IndividualSteps::pack_forward_comm(int n, int *list, double *buf)
 void IndividualSteps::unpack_forward_comm(int n, int first, const double *buf)
 {
   if (comm_ == Comm::TIMES) {
-    for (int k = 0; k < 2 * n; k++) times_[2 * first + k] = buf[k];
+    for (int k = 0; k < NTIMES * n; k++) times_[NTIMES * first + k] = buf[k];
     return;
   }
   for (int k = 0; k < n; k++) {

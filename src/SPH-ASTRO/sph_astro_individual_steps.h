@@ -29,6 +29,10 @@
 // evaluation both particles get the same impulse F_ij (w_closing + w_opening) (the opening
 // part given at the start of the next LAMMPS step), so the total momentum is conserved to
 // round-off; a_other is the rest (gravity, other styles, fixes). u is integrated per particle.
+// A pair on a shorter interval than particle i's step has kicked i up to its own interval's
+// middle t_mid,ij, not t_mid,i: the prediction adds its lead, v_est = v + a (t - t_mid,i) +
+// sum_j F_ij (t_mid,i - t_mid,ij) / m_i (d2_step_pair_lead). A pair whose interval a wake
+// shortened closes with the rest of it, w_closing = (t - t_open) - w_opening.
 // Other forces on inactive particles are computed by LAMMPS every step and not used: an
 // inactive particle keeps a_other of its last evaluation.
 
@@ -135,8 +139,8 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   LAMMPS_NS::bigint hierarchy_step_ = -1;    // the step the hierarchy's state belongs to
   std::vector<char> active_;
   std::vector<double> bins_, required_;    // owned and ghost: bins, the limiter's minimum bin
-  std::vector<double> times_, sums_;    // begin and end (owned, ghost); pair sums (pair_impulses)
-  std::vector<int> woken_list_;         // particles woken by the limiter, and their x shift
+  std::vector<double> times_, sums_;       // owned and ghost times, pair sums (pair_impulses)
+  std::vector<int> woken_list_;            // particles woken by the limiter, and their x shift
   std::vector<double> woken_dx_;
   enum class Comm { ACTIVE, BINS, REQUIRED, TIMES, SUMS } comm_ = Comm::ACTIVE;
   double active_total_ = 0.0, updates_ = 0.0, steps_ = 0.0, woken_ = 0.0;

@@ -129,16 +129,17 @@ void ensure_continuity_state(LAMMPS *lmp, const char *caller)
 }
 
 namespace {
-  const char *const STEP_VECTORS[] = {"step_begin", "step_end",   "step_bin",     "step_dudt",
-                                      "step_divv",  "step_omega", "step_balsara", "step_nneigh"};
+  const char *const STEP_VECTORS[] = {"step_begin",    "step_end",   "step_bin",  "step_woken",
+                                      "step_end_then", "step_dudt",  "step_divv", "step_omega",
+                                      "step_balsara",  "step_nneigh"};
 }
 
 bool find_step_state(LAMMPS *lmp, StepIndex &idx)
 {
   int flag, cols;
-  int *fields[] = {&idx.begin, &idx.end,   &idx.bin,     &idx.dudt,
-                   &idx.divv,  &idx.omega, &idx.balsara, &idx.nneigh};
-  for (int k = 0; k < 8; k++) {
+  int *fields[] = {&idx.begin, &idx.end,  &idx.bin,   &idx.woken,   &idx.end_then,
+                   &idx.dudt,  &idx.divv, &idx.omega, &idx.balsara, &idx.nneigh};
+  for (int k = 0; k < 10; k++) {
     *fields[k] = lmp->atom->find_custom(STEP_VECTORS[k], flag, cols);
     if (*fields[k] < 0 || flag != 1 || cols != 0) return false;
   }
@@ -147,7 +148,9 @@ bool find_step_state(LAMMPS *lmp, StepIndex &idx)
   idx.accel_other = lmp->atom->find_custom("step_accel_other", flag, cols);
   if (idx.accel_other < 0 || flag != 1 || cols != 3) return false;
   idx.kick = lmp->atom->find_custom("step_kick", flag, cols);
-  return idx.kick >= 0 && flag == 1 && cols == 3;
+  if (idx.kick < 0 || flag != 1 || cols != 3) return false;
+  idx.pair_lead = lmp->atom->find_custom("step_pair_lead", flag, cols);
+  return idx.pair_lead >= 0 && flag == 1 && cols == 3;
 }
 
 void ensure_step_state(LAMMPS *lmp, const char *caller)
@@ -167,8 +170,9 @@ void ensure_step_state(LAMMPS *lmp, const char *caller)
                       "SPH-ASTRO owns the names d_step_*",
                       caller, name, STEPS_FIX_ID);
   lmp->modify->add_fix(std::string(STEPS_FIX_ID) +
-                       " all property/atom d_step_begin d_step_end d_step_bin d2_step_accel 3 "
-                       "d2_step_accel_other 3 d2_step_kick 3 d_step_dudt "
+                       " all property/atom d_step_begin d_step_end d_step_bin d_step_woken "
+                       "d_step_end_then d2_step_accel 3 "
+                       "d2_step_accel_other 3 d2_step_kick 3 d2_step_pair_lead 3 d_step_dudt "
                        "d_step_divv d_step_omega d_step_balsara d_step_nneigh");
 }
 
@@ -176,13 +180,16 @@ void clear_state(LAMMPS *lmp, int i)
 {
   Atom *atom = lmp->atom;
   int flag, cols;
-  for (const char *name : {"rho", "h", "u", "dudt", "uest", "entropy", "entropy_est", "dentropy",
-                           "rhoest", "drhodt", "step_begin", "step_end", "step_bin", "step_dudt",
-                           "step_divv", "step_omega", "step_balsara", "step_nneigh"}) {
+  for (const char *name :
+       {"rho",        "h",           "u",          "dudt",         "uest",
+        "entropy",    "entropy_est", "dentropy",   "rhoest",       "drhodt",
+        "step_begin", "step_end",    "step_bin",   "step_woken",   "step_end_then",
+        "step_dudt",  "step_divv",   "step_omega", "step_balsara", "step_nneigh"}) {
     const int index = atom->find_custom(name, flag, cols);
     if (index >= 0 && flag == 1 && cols == 0) atom->dvector[index][i] = 0.0;
   }
-  for (const char *name : {"vest", "step_accel", "step_accel_other", "step_kick"}) {
+  for (const char *name :
+       {"vest", "step_accel", "step_accel_other", "step_kick", "step_pair_lead"}) {
     const int index = atom->find_custom(name, flag, cols);
     if (index >= 0 && flag == 1 && cols > 0)
       for (int c = 0; c < cols; c++) atom->darray[index][i][c] = 0.0;

@@ -80,11 +80,18 @@ bool find_continuity_state(LAMMPS_NS::LAMMPS *lmp, ContinuityIndex &idx);
 // own fix property/atom SPH_ASTRO_STEPS, created only for such scenes:
 //   d_step_begin, d_step_end   the particle's current step, in ticks (sph_astro_time_bins.h)
 //   d_step_bin                 its bin: dt = dt_max / 2^bin
+//   d_step_woken               the time the limiter first woke it in this step (ticks; -1:
+//                              not woken)
+//   d_step_end_then            its step's end before that (kicks pair: the pairs it opened
+//                              before were given their opening kick for that end)
 //   d2_step_accel 3            acceleration of its last force evaluation (all forces)
 //   d2_step_accel_other 3      the part of it that is not pair sph/astro's pressure and
 //                              viscosity (gravity, other styles, fixes): kicked per particle
 //   d2_step_kick 3             the velocity change of the pair kicks that opened at the last
 //                              evaluation, given at the start of the next LAMMPS step
+//   d2_step_pair_lead 3        kicks pair: sum_j F_ij (t_mid,i - t_mid,ij) / m_i, how far the
+//                              pair kicks given lead those of the particle's own step (the
+//                              prediction's term for pairs whose interval is not that step)
 //   d_step_dudt                du/dt of its last force evaluation
 //   d_step_divv                div v (drifts rho and h between its evaluations)
 //   d_step_omega               grad-h factor Omega           (set by pair sph/astro)
@@ -92,8 +99,8 @@ bool find_continuity_state(LAMMPS_NS::LAMMPS *lmp, ContinuityIndex &idx);
 //   d_step_nneigh              neighbours inside the kernel support (set by pair sph/astro)
 constexpr const char *STEPS_FIX_ID = "SPH_ASTRO_STEPS";
 struct StepIndex {
-  int begin = -1, end = -1, bin = -1, accel = -1, accel_other = -1, kick = -1, dudt = -1, divv = -1,
-      omega = -1, balsara = -1, nneigh = -1;
+  int begin = -1, end = -1, bin = -1, woken = -1, end_then = -1, accel = -1, accel_other = -1,
+      kick = -1, pair_lead = -1, dudt = -1, divv = -1, omega = -1, balsara = -1, nneigh = -1;
 };
 void ensure_step_state(LAMMPS_NS::LAMMPS *lmp, const char *caller);
 
