@@ -18,6 +18,7 @@
 #include "error.h"
 #include "fix.h"
 #include "group.h"
+#include "neighbor.h"
 #include "update.h"
 #include "utils.h"
 
@@ -29,9 +30,8 @@ using namespace LAMMPS_NS;
 namespace SPHAstro {
 
 namespace {
-  constexpr int NSUM = 6;      // per-atom sums of pair_impulses()
   constexpr int NTIMES = 4;    // per-atom times of pair_impulses(): begin, end, woken, end_then
-  const double NO_PAIR_KICKS[NSUM] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};    // kicks particle
+  const double NO_PAIR_KICKS[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};    // kicks particle
 
 }    // namespace
 
@@ -87,6 +87,7 @@ void IndividualSteps::init(const StateIndex &state, bool state_unchanged)
                "fix sph/astro steps individual: the per-particle step state fix {} is missing",
                STEPS_FIX_ID);
   continuing_ = started_ && state_unchanged && hierarchy_step_ == update->ntimestep;
+  times_step_ = -1;    // the run's setup sends the ghosts anew
 }
 
 void IndividualSteps::setup_pre_force(PairSPHAstro *pair)
@@ -97,6 +98,7 @@ void IndividualSteps::setup_pre_force(PairSPHAstro *pair)
   // a continued hierarchy has every particle's values from its last evaluation: the setup
   // evaluates none; a new one evaluates all
   for (int i = 0; i < nall; i++) active_[i] = !continuing_ && (mask[i] & owner_->groupbit);
+  times_step_ = -1;
   pair->set_active(active_.data(), pair_kicks_);
 }
 
@@ -139,7 +141,7 @@ void IndividualSteps::start(const std::vector<double> &wanted, double dtmax, dou
     advance_to_next();
     return;
   }
-  pair_impulses(pair, false);
+  pair_impulses(pair, false, true);
   double **accel_other = atom->darray[idx_.accel_other];
   double **kick = atom->darray[idx_.kick];
   double **lead = atom->darray[idx_.pair_lead];
@@ -148,7 +150,7 @@ void IndividualSteps::start(const std::vector<double> &wanted, double dtmax, dou
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
-    const double *sum = pair_kicks_ ? &sums_[NSUM * i] : NO_PAIR_KICKS;
+    const double *sum = pair_kicks_ ? &sums_[nsum_ * i] : NO_PAIR_KICKS;
     const double half = 0.5 * (end[i] - begin[i]) * tick();
     for (int d = 0; d < 3; d++) {
       accel_other[i][d] = (f[i][d] - sum[3 + d]) / m;
@@ -235,7 +237,7 @@ void IndividualSteps::pre_force(PairSPHAstro *pair)
 
 void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
 {
-  pair_impulses(pair, true);
+  pair_impulses(pair, true, true);
   const double t = tick();
   const int nlocal = atom->nlocal;
   const int *mask = atom->mask;
@@ -253,7 +255,7 @@ void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
     // the pairs evaluated now close their interval on both atoms, active or not
-    const double *sum = pair_kicks_ ? &sums_[NSUM * i] : NO_PAIR_KICKS;
+    const double *sum = pair_kicks_ ? &sums_[nsum_ * i] : NO_PAIR_KICKS;
     for (int d = 0; d < 3; d++) v[i][d] += sum[d] / m;
     if (!active_[i]) {    // other forces of this step are not its: its last evaluation's
       for (int d = 0; d < 3; d++) lead[i][d] -= sum[d] / m;
@@ -284,7 +286,9 @@ void IndividualSteps::end_of_step(const std::vector<double> &wanted, PairSPHAstr
   ti_now_ = ti_next_;
   hierarchy_step_ = update->ntimestep;
   assign_bins(wanted, false, pair);
-  pair_impulses(pair, false);    // the pairs evaluated now open their next interval
+  // the pairs evaluated now open their next interval (the impulses only: an active particle's
+  // sum_j F_ij is m (accel - accel_other) since final_kick)
+  pair_impulses(pair, false, false);
   double **x = atom->x;
   for (std::size_t k = 0; k < woken_list_.size(); k++)
     for (int d = 0; d < 3; d++) x[woken_list_[k]][d] += woken_dx_[3 * k + d];
@@ -294,19 +298,22 @@ void IndividualSteps::end_of_step(const std::vector<double> &wanted, PairSPHAstr
   const int *mask = atom->mask;
   double **kick = atom->darray[idx_.kick];
   double **lead = atom->darray[idx_.pair_lead];
+  const double *const *accel = atom->darray[idx_.accel];
+  const double *const *accel_other = atom->darray[idx_.accel_other];
   const double *begin = atom->dvector[idx_.begin];
   const double *end = atom->dvector[idx_.end];
   for (int i = 0; pair_kicks_ && i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
-    const double *sum = &sums_[NSUM * i];
+    const double *sum = &sums_[nsum_ * i];
     for (int d = 0; d < 3; d++) kick[i][d] = sum[d] / m;
     // lead: sum_j F_ij (t_mid,i - t_mid,ij) / m, all pairs of an active particle anew (its
     // step's middle is half a step ahead; a pair's is w_ij ahead); an inactive one's
     // pairs evaluated now have kicked it by sum_j F_ij w_ij further
     if (active_[i]) {
       const double half = 0.5 * (end[i] - begin[i]) * tick();
-      for (int d = 0; d < 3; d++) lead[i][d] = (half * sum[3 + d] - sum[d]) / m;
+      for (int d = 0; d < 3; d++)
+        lead[i][d] = half * (accel[i][d] - accel_other[i][d]) - sum[d] / m;
     } else {
       for (int d = 0; d < 3; d++) lead[i][d] -= sum[d] / m;
     }
@@ -441,28 +448,38 @@ void IndividualSteps::limit(PairSPHAstro *pair)
 // Closing, at the evaluation (ti_next_): w = (ti_next_ - t_o) - w_o, the rest of the interval,
 // with t_o = max(begin_i, begin_j) and w_o from the ends the atoms had at t_o (an atom the
 // limiter woke after t_o had d_step_end_then): w = w_o unless a wake shortened the interval.
-// Per owned atom: sums_[6i..6i+2] = sum_j F_ij w_ij, [6i+3..6i+5] = sum_j F_ij (with the
-// ghosts' parts)
-void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing)
+// Per owned atom (with the ghosts' parts): sums_[n i..n i+2] = sum_j F_ij w_ij, with_forces:
+// [n i+3..n i+5] = sum_j F_ij (n = nsum_: 6 with the forces, else 3). The times the opening
+// sent to the ghosts serve the next closing unless atoms moved between ranks or were
+// reordered (a reneighbouring) or the time line started a new cycle.
+void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_forces)
 {
   if (!pair_kicks_) return;
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
-  if (times_.size() < NTIMES * static_cast<std::size_t>(nall)) times_.resize(NTIMES * nall);
-  const double *begin = atom->dvector[idx_.begin];
-  const double *end = atom->dvector[idx_.end];
-  const double *woken = atom->dvector[idx_.woken];
-  const double *end_then = atom->dvector[idx_.end_then];
-  for (int i = 0; i < nlocal; i++) {
-    double *ti = &times_[NTIMES * i];
-    ti[0] = begin[i];
-    ti[1] = end[i];
-    ti[2] = woken[i];
-    ti[3] = end_then[i];
+  const bool times_kept =
+      closing && times_step_ == update->ntimestep - 1 && neighbor->ago != 0 && times_nall_ == nall;
+  if (!times_kept) {
+    if (times_.size() < NTIMES * static_cast<std::size_t>(nall)) times_.resize(NTIMES * nall);
+    const double *begin = atom->dvector[idx_.begin];
+    const double *end = atom->dvector[idx_.end];
+    const double *woken = atom->dvector[idx_.woken];
+    const double *end_then = atom->dvector[idx_.end_then];
+    for (int i = 0; i < nlocal; i++) {
+      double *ti = &times_[NTIMES * i];
+      ti[0] = begin[i];
+      ti[1] = end[i];
+      ti[2] = woken[i];
+      ti[3] = end_then[i];
+    }
+    comm_ = Comm::TIMES;
+    comm->forward_comm(owner_, NTIMES);
   }
-  comm_ = Comm::TIMES;
-  comm->forward_comm(owner_, NTIMES);
-  sums_.assign(NSUM * static_cast<std::size_t>(nall), 0.0);
+  // (an opening's times, valid for the next step's closing until advance_to_next says no)
+  times_step_ = closing ? -1 : update->ntimestep;
+  times_nall_ = nall;
+  nsum_ = with_forces ? 6 : 3;
+  sums_.assign(nsum_ * static_cast<std::size_t>(nall), 0.0);
   const double half_tick = 0.5 * tick();
   double **x = atom->x;    // (those of the force evaluation: no drift since)
   for (const PairForce &p : pair->pair_forces()) {
@@ -478,20 +495,18 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing)
     } else {
       w = half_tick * (std::min(ti[1], tj[1]) - ti_now_);
     }
-    double *si = &sums_[NSUM * i];
-    for (int d = 0; d < 3; d++) {
-      si[d] += w * f[d];
-      si[3 + d] += f[d];
-    }
+    double *si = &sums_[nsum_ * i];
+    for (int d = 0; d < 3; d++) si[d] += w * f[d];
+    if (with_forces)
+      for (int d = 0; d < 3; d++) si[3 + d] += f[d];
     if (p.j < 0) continue;
-    double *sj = &sums_[NSUM * j];
-    for (int d = 0; d < 3; d++) {
-      sj[d] -= w * f[d];
-      sj[3 + d] -= f[d];
-    }
+    double *sj = &sums_[nsum_ * j];
+    for (int d = 0; d < 3; d++) sj[d] -= w * f[d];
+    if (with_forces)
+      for (int d = 0; d < 3; d++) sj[3 + d] -= f[d];
   }
   comm_ = Comm::SUMS;
-  comm->reverse_comm(owner_, NSUM);
+  comm->reverse_comm(owner_, nsum_);
 }
 
 // the next LAMMPS step ends where the first particle step ends; at the end of a cycle (all
@@ -504,6 +519,7 @@ void IndividualSteps::advance_to_next()
   double *end = atom->dvector[idx_.end];
   const double cycle = TimeBins::cycle();
   if (ti_now_ >= cycle) {
+    times_step_ = -1;    // the ghosts' times are those of the last cycle
     double *woken = atom->dvector[idx_.woken];
     double *end_then = atom->dvector[idx_.end_then];
     for (int i = 0; i < nlocal; i++) {
@@ -608,8 +624,8 @@ void IndividualSteps::unpack_forward_comm(int n, int first, const double *buf)
 int IndividualSteps::pack_reverse_comm(int n, int first, double *buf)
 {
   if (comm_ == Comm::SUMS) {
-    for (int k = 0; k < NSUM * n; k++) buf[k] = sums_[NSUM * first + k];
-    return NSUM * n;
+    for (int k = 0; k < nsum_ * n; k++) buf[k] = sums_[nsum_ * first + k];
+    return nsum_ * n;
   }
   for (int k = 0; k < n; k++) buf[k] = required_[first + k];
   return n;
@@ -619,7 +635,7 @@ void IndividualSteps::unpack_reverse_comm(int n, const int *list, const double *
 {
   if (comm_ == Comm::SUMS) {
     for (int k = 0; k < n; k++)
-      for (int c = 0; c < NSUM; c++) sums_[NSUM * list[k] + c] += buf[NSUM * k + c];
+      for (int c = 0; c < nsum_; c++) sums_[nsum_ * list[k] + c] += buf[nsum_ * k + c];
     return;
   }
   for (int k = 0; k < n; k++) required_[list[k]] = std::max(required_[list[k]], buf[k]);

@@ -140,6 +140,9 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   std::vector<char> active_;
   std::vector<double> bins_, required_;    // owned and ghost: bins, the limiter's minimum bin
   std::vector<double> times_, sums_;       // owned and ghost times, pair sums (pair_impulses)
+  int nsum_ = 6;                           // sums_ per atom: impulses, and forces if 6
+  LAMMPS_NS::bigint times_step_ = -1;      // the step of the opening whose times_ are valid
+  int times_nall_ = 0;                     // owned + ghost atoms then
   std::vector<int> woken_list_;            // particles woken by the limiter, and their x shift
   std::vector<double> woken_dx_;
   enum class Comm { ACTIVE, BINS, REQUIRED, TIMES, SUMS } comm_ = Comm::ACTIVE;
@@ -150,7 +153,7 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   void grow();
   void assign_bins(const std::vector<double> &wanted, bool fresh, LAMMPS_NS::PairSPHAstro *pair);
   void limit(LAMMPS_NS::PairSPHAstro *pair);
-  void pair_impulses(LAMMPS_NS::PairSPHAstro *pair, bool closing);
+  void pair_impulses(LAMMPS_NS::PairSPHAstro *pair, bool closing, bool with_forces);
   void advance_to_next();
 };
 
