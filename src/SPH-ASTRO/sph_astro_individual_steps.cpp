@@ -417,8 +417,8 @@ void IndividualSteps::limit(PairSPHAstro *pair)
     const double new_end = TimeBins::wake_end(ti_now_, static_cast<int>(required_[i]));
     if (!(new_end < end[i])) continue;
     // its first half kick (forces not of pairs) becomes that of the shortened step, and so
-    // does its drift since; the pair kicks that opened an interval with a sleeping partner
-    // keep their length (the pairs of the woken particle with the waking ones open theirs now)
+    // does its drift since; its pairs with sleeping partners close with the rest of their
+    // shortened interval (pair_impulses; those with the waking ones open theirs now)
     const double shift = 0.5 * (new_end - end[i]) * t;
     const double since = (ti_now_ - begin[i]) * t;
     // (x moves after the opening pair kicks, which take the pair forces' positions)
