@@ -217,12 +217,9 @@ void PairSPHAstro::finish()
   const double *nneigh = neighbour_counts();
   // (individual steps: the entries per row made, weighted alike)
   const double row_entries = s.rows_eager > 0 ? s.reach_entries : s.half_entries;
-  double local[6] = {row_entries * s.atoms,
-                     s.full_entries * s.atoms,
-                     0.0,
-                     static_cast<double>(s.atoms),
-                     static_cast<double>(atom->nghost),
-                     lists_->memory_usage()};
+  double local[6] = {
+      row_entries * s.atoms,        s.full_entries * s.atoms,          0.0,
+      static_cast<double>(s.atoms), static_cast<double>(atom->nghost), lists_->memory_usage()};
   for (int i = 0; i < atom->nlocal; i++) local[2] += nneigh[i];
   double all[6];
   MPI_Allreduce(local, all, 6, MPI_DOUBLE, MPI_SUM, world);
@@ -378,7 +375,7 @@ void PairSPHAstro::compute(int eflag, int vflag)
                  STEPS_FIX_ID);
     arrays.steps = {active_, atom->dvector[step_index_->omega], atom->dvector[step_index_->balsara],
                     atom->dvector[step_index_->divv], atom->dvector[step_index_->nneigh]};
-    pair_forces_.clear();    // fix sph/astro kicks pair: both atoms of each pair with its force
+    pair_forces_.clear();    // the limiter and kicks pair: both atoms of each pair, its force
     if (record_pair_forces_) ctx.pair_forces = &pair_forces_;
   }
   PairExchange exchange(this);
@@ -393,11 +390,6 @@ void PairSPHAstro::compute(int eflag, int vflag)
   if (vflag_fdotr) virial_fdotr_compute();
   computed_step_ = update->ntimestep;
   computed_nlocal_ = atom->nlocal;
-}
-
-const NeighView &PairSPHAstro::evaluated_pairs() const
-{
-  return lists_->due_view();
 }
 
 /* ----------------------------------------------------------------------

@@ -128,7 +128,8 @@ class PairSPHAstro : public Pair {
   // step ends with this step's force evaluation (one flag per atom, valid until the next
   // reneighbouring; null: global stepping). Only the pairs with an active atom are evaluated,
   // and only active atoms get new values (sph_astro_force_evaluation.h)
-  // record: keep each evaluated pair's force (pair_forces(), for fix sph/astro kicks pair)
+  // record: keep each evaluated pair and its force (pair_forces(): the timestep limiter's
+  // neighbours, and the pair kicks of fix sph/astro kicks pair)
   void set_active(const char *active, bool record = false)
   {
     active_ = active;
@@ -136,10 +137,9 @@ class PairSPHAstro : public Pair {
   }
   // the active flags of owned and ghost atoms set for this step (null: global stepping)
   const char *active_flags() const { return active_; }
-  // the pairs of the latest evaluation with individual steps (the limiter's neighbours)
-  const SPHAstro::NeighView &evaluated_pairs() const;
-  // the pressure and viscous force of each pair of the latest evaluation with individual
-  // steps (valid until the next reneighbouring)
+  // the pairs of the latest evaluation with individual steps, those inside the kernel
+  // support(s) of the force pass, with their pressure and viscous force (when recorded;
+  // valid until the next reneighbouring)
   const std::vector<SPHAstro::PairForce> &pair_forces() const { return pair_forces_; }
 
   // the communication of one stage of a force evaluation (sph_astro_force_evaluation.h):

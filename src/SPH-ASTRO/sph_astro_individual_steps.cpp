@@ -8,7 +8,6 @@
 #include "sph_astro_individual_steps.h"
 
 #include "pair_sph_astro.h"
-#include "sph_astro_neigh_view.h"
 #include "sph_astro_options.h"
 #include "sph_astro_time_bins.h"
 
@@ -30,7 +29,8 @@ using namespace LAMMPS_NS;
 namespace SPHAstro {
 
 namespace {
-  constexpr int NTIMES = 4;    // per-atom times of pair_impulses(): begin, end, woken, end_then
+  constexpr int NTIMES = 4;        // per-atom times of pair_impulses(): begin, end, woken, end_then
+  constexpr int SUM_STRIDE = 6;    // sums_ per atom: impulses, forces
   const double NO_PAIR_KICKS[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};    // kicks particle
 
 }    // namespace
@@ -87,7 +87,7 @@ void IndividualSteps::init(const StateIndex &state, bool state_unchanged)
                "fix sph/astro steps individual: the per-particle step state fix {} is missing",
                STEPS_FIX_ID);
   continuing_ = started_ && state_unchanged && hierarchy_step_ == update->ntimestep;
-  times_step_ = -1;    // the run's setup sends the ghosts anew
+  times_opened_ = times_closed_ = -1;    // the run's setup sends the ghosts anew
 }
 
 void IndividualSteps::setup_pre_force(PairSPHAstro *pair)
@@ -98,8 +98,8 @@ void IndividualSteps::setup_pre_force(PairSPHAstro *pair)
   // a continued hierarchy has every particle's values from its last evaluation: the setup
   // evaluates none; a new one evaluates all
   for (int i = 0; i < nall; i++) active_[i] = !continuing_ && (mask[i] & owner_->groupbit);
-  times_step_ = -1;
-  pair->set_active(active_.data(), pair_kicks_);
+  times_opened_ = times_closed_ = -1;
+  pair->set_active(active_.data(), records_pairs());
 }
 
 void IndividualSteps::start(const std::vector<double> &wanted, double dtmax, double time_left,
@@ -150,7 +150,7 @@ void IndividualSteps::start(const std::vector<double> &wanted, double dtmax, dou
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
-    const double *sum = pair_kicks_ ? &sums_[nsum_ * i] : NO_PAIR_KICKS;
+    const double *sum = pair_kicks_ ? &sums_[SUM_STRIDE * i] : NO_PAIR_KICKS;
     const double half = 0.5 * (end[i] - begin[i]) * tick();
     for (int d = 0; d < 3; d++) {
       accel_other[i][d] = (f[i][d] - sum[3 + d]) / m;
@@ -228,11 +228,11 @@ void IndividualSteps::pre_force(PairSPHAstro *pair)
     count += active_[i];
   }
   comm_ = Comm::ACTIVE;
-  comm->forward_comm(owner_, 1);
+  comm->forward_comm(owner_, 2);
   MPI_Allreduce(&count, &active_total_, 1, MPI_DOUBLE, MPI_SUM, world);
   updates_ += active_total_;
   steps_ += 1.0;
-  pair->set_active(active_.data(), pair_kicks_);
+  pair->set_active(active_.data(), records_pairs());
 }
 
 void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
@@ -255,7 +255,7 @@ void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
     // the pairs evaluated now close their interval on both atoms, active or not
-    const double *sum = pair_kicks_ ? &sums_[nsum_ * i] : NO_PAIR_KICKS;
+    const double *sum = pair_kicks_ ? &sums_[SUM_STRIDE * i] : NO_PAIR_KICKS;
     for (int d = 0; d < 3; d++) v[i][d] += sum[d] / m;
     if (!active_[i]) {    // other forces of this step are not its: its last evaluation's
       for (int d = 0; d < 3; d++) lead[i][d] -= sum[d] / m;
@@ -305,7 +305,7 @@ void IndividualSteps::end_of_step(const std::vector<double> &wanted, PairSPHAstr
   for (int i = 0; pair_kicks_ && i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
-    const double *sum = &sums_[nsum_ * i];
+    const double *sum = &sums_[SUM_STRIDE * i];
     for (int d = 0; d < 3; d++) kick[i][d] = sum[d] / m;
     // lead: sum_j F_ij (t_mid,i - t_mid,ij) / m, all pairs of an active particle anew (its
     // step's middle is half a step ahead; a pair's is w_ij ahead); an inactive one's
@@ -368,28 +368,13 @@ void IndividualSteps::limit(PairSPHAstro *pair)
   comm_ = Comm::BINS;
   comm->forward_comm(owner_, 1);
   std::fill(required_.begin(), required_.begin() + nall, -1.0);
-  // neighbours: the list pairs inside a kernel support, r < R max(h_i, h_j) (the lists also
-  // hold farther pairs, which on one rank may lie beyond another's ghosts)
-  const NeighView &pairs = pair->evaluated_pairs();
+  // neighbours: the pairs of the force evaluation (inside the kernel support(s); each has an
+  // active particle)
   const double levels = levels_;
-  const double R = pair->kernel_radius();
-  double **x = atom->x;
-  const double *h = atom->dvector[state_.h];
-  for (int ii = 0; ii < pairs.inum; ii++) {
-    const int i = pairs.ilist[ii];
-    const int *row = pairs.firstneigh[i];
-    double need_i = required_[i];
-    const double bi = bins_[i] - levels;
-    const double xi = x[i][0], yi = x[i][1], zi = x[i][2], hi = h[i];
-    for (int k = 0; k < pairs.numneigh[i]; k++) {
-      const int j = row[k] & NEIGHMASK;
-      const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
-      const double reach = R * std::max(hi, h[j]);
-      if (dx * dx + dy * dy + dz * dz >= reach * reach) continue;
-      need_i = std::max(need_i, bins_[j] - levels);
-      required_[j] = std::max(required_[j], bi);
-    }
-    required_[i] = need_i;
+  for (const PairForce &p : pair->pair_forces()) {
+    const int i = p.i, j = p.j >= 0 ? p.j : ~p.j;
+    required_[i] = std::max(required_[i], bins_[j] - levels);
+    required_[j] = std::max(required_[j], bins_[i] - levels);
   }
   comm_ = Comm::REQUIRED;
   comm->reverse_comm(owner_, 1);
@@ -457,29 +442,26 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_
   if (!pair_kicks_) return;
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
-  const bool times_kept =
-      closing && times_step_ == update->ntimestep - 1 && neighbor->ago != 0 && times_nall_ == nall;
-  if (!times_kept) {
-    if (times_.size() < NTIMES * static_cast<std::size_t>(nall)) times_.resize(NTIMES * nall);
-    const double *begin = atom->dvector[idx_.begin];
-    const double *end = atom->dvector[idx_.end];
-    const double *woken = atom->dvector[idx_.woken];
-    const double *end_then = atom->dvector[idx_.end_then];
-    for (int i = 0; i < nlocal; i++) {
-      double *ti = &times_[NTIMES * i];
-      ti[0] = begin[i];
-      ti[1] = end[i];
-      ti[2] = woken[i];
-      ti[3] = end_then[i];
-    }
-    comm_ = Comm::TIMES;
-    comm->forward_comm(owner_, NTIMES);
+  // the ghosts' copies of the times: a closing keeps those of the last opening (no atom's
+  // times change in between) unless a reneighbouring, a new cycle or a new run came between;
+  // an opening sends the atoms whose times changed since this step's closing
+  const bigint step = update->ntimestep;
+  if (times_.size() < NTIMES * static_cast<std::size_t>(nall)) times_.resize(NTIMES * nall);
+  if (closing) {
+    if (times_opened_ != step - 1 || neighbor->ago == 0 || times_nall_ != nall) send_times(false);
+    times_closed_ = step;
+  } else {
+    send_times(times_closed_ == step && times_nall_ == nall);
+    times_opened_ = step;
   }
-  // (an opening's times, valid for the next step's closing until advance_to_next says no)
-  times_step_ = closing ? -1 : update->ntimestep;
   times_nall_ = nall;
   nsum_ = with_forces ? 6 : 3;
-  sums_.assign(nsum_ * static_cast<std::size_t>(nall), 0.0);
+  // the ghosts' entries are zero between calls; the owned ones of the last call are cleared
+  if (sums_.size() < SUM_STRIDE * static_cast<std::size_t>(nall))
+    sums_.resize(SUM_STRIDE * static_cast<std::size_t>(nall), 0.0);
+  if (touched_mark_.size() < static_cast<std::size_t>(nall)) touched_mark_.resize(nall, 0);
+  std::fill(sums_.begin(), sums_.begin() + SUM_STRIDE * std::max(nlocal, sums_nlocal_), 0.0);
+  sums_nlocal_ = nlocal;
   const double half_tick = 0.5 * tick();
   double **x = atom->x;    // (those of the force evaluation: no drift since)
   for (const PairForce &p : pair->pair_forces()) {
@@ -495,18 +477,52 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_
     } else {
       w = half_tick * (std::min(ti[1], tj[1]) - ti_now_);
     }
-    double *si = &sums_[nsum_ * i];
+    double *si = &sums_[SUM_STRIDE * i];
     for (int d = 0; d < 3; d++) si[d] += w * f[d];
     if (with_forces)
       for (int d = 0; d < 3; d++) si[3 + d] += f[d];
+    touch(i, nlocal);
     if (p.j < 0) continue;
-    double *sj = &sums_[nsum_ * j];
+    double *sj = &sums_[SUM_STRIDE * j];
     for (int d = 0; d < 3; d++) sj[d] -= w * f[d];
     if (with_forces)
       for (int d = 0; d < 3; d++) sj[3 + d] -= f[d];
+    touch(j, nlocal);
   }
   comm_ = Comm::SUMS;
-  comm->reverse_comm(owner_, nsum_);
+  comm->reverse_comm(owner_, SUM_STRIDE + 2);
+  for (int g : touched_) {
+    std::fill_n(&sums_[SUM_STRIDE * static_cast<std::size_t>(g)], SUM_STRIDE, 0.0);
+    touched_mark_[g] = 0;
+  }
+  touched_.clear();
+}
+
+// the owned atoms' times to their ghosts: all, or (changed_only) those that differ from what
+// was sent last (times_ holds it for owned atoms)
+void IndividualSteps::send_times(bool changed_only)
+{
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  if (times_changed_.size() < static_cast<std::size_t>(nall)) times_changed_.resize(nall, 0);
+  const double *begin = atom->dvector[idx_.begin];
+  const double *end = atom->dvector[idx_.end];
+  const double *woken = atom->dvector[idx_.woken];
+  const double *end_then = atom->dvector[idx_.end_then];
+  for (int i = 0; i < nlocal; i++) {
+    double *ti = &times_[NTIMES * i];
+    if (changed_only && ti[0] == begin[i] && ti[1] == end[i] && ti[2] == woken[i] &&
+        ti[3] == end_then[i])
+      continue;
+    ti[0] = begin[i];
+    ti[1] = end[i];
+    ti[2] = woken[i];
+    ti[3] = end_then[i];
+    times_changed_[i] = 1;
+  }
+  comm_ = changed_only ? Comm::TIMES_CHANGED : Comm::TIMES;
+  comm->forward_comm(owner_, NTIMES + 2);
+  std::fill(times_changed_.begin(), times_changed_.begin() + nall, 0);
 }
 
 // the next LAMMPS step ends where the first particle step ends; at the end of a cycle (all
@@ -519,7 +535,7 @@ void IndividualSteps::advance_to_next()
   double *end = atom->dvector[idx_.end];
   const double cycle = TimeBins::cycle();
   if (ti_now_ >= cycle) {
-    times_step_ = -1;    // the ghosts' times are those of the last cycle
+    times_opened_ = times_closed_ = -1;    // the ghosts' times are those of the last cycle
     double *woken = atom->dvector[idx_.woken];
     double *end_then = atom->dvector[idx_.end_then];
     for (int i = 0; i < nlocal; i++) {
@@ -602,8 +618,21 @@ int IndividualSteps::pack_forward_comm(int n, int *list, double *buf)
       for (int c = 0; c < NTIMES; c++) buf[NTIMES * k + c] = times_[NTIMES * list[k] + c];
     return NTIMES * n;
   }
-  for (int k = 0; k < n; k++)
-    buf[k] = comm_ == Comm::ACTIVE ? static_cast<double>(active_[list[k]]) : bins_[list[k]];
+  // the changed times, or the active atoms: count, then (index, times) or index
+  if (comm_ == Comm::TIMES_CHANGED || comm_ == Comm::ACTIVE) {
+    const bool times = comm_ == Comm::TIMES_CHANGED;
+    double *out = buf + 1;
+    for (int k = 0; k < n; k++) {
+      const int i = list[k];
+      if (!(times ? times_changed_[i] : active_[i])) continue;
+      *out++ = k;
+      if (times)
+        for (int c = 0; c < NTIMES; c++) *out++ = times_[NTIMES * i + c];
+    }
+    buf[0] = static_cast<double>((out - buf - 1) / (times ? NTIMES + 1 : 1));
+    return static_cast<int>(out - buf);
+  }
+  for (int k = 0; k < n; k++) buf[k] = bins_[list[k]];
   return n;
 }
 
@@ -613,19 +642,40 @@ void IndividualSteps::unpack_forward_comm(int n, int first, const double *buf)
     for (int k = 0; k < NTIMES * n; k++) times_[NTIMES * first + k] = buf[k];
     return;
   }
-  for (int k = 0; k < n; k++) {
-    if (comm_ == Comm::ACTIVE)
-      active_[first + k] = buf[k] != 0.0;
-    else
-      bins_[first + k] = buf[k];
+  if (comm_ == Comm::TIMES_CHANGED || comm_ == Comm::ACTIVE) {
+    if (n == 0) return;
+    const bool times = comm_ == Comm::TIMES_CHANGED;
+    const int count = static_cast<int>(buf[0]);
+    const double *in = buf + 1;
+    if (!times) std::fill_n(active_.begin() + first, n, 0);
+    for (int e = 0; e < count; e++) {
+      const int i = first + static_cast<int>(*in++);
+      if (!times) {
+        active_[i] = 1;
+        continue;
+      }
+      for (int c = 0; c < NTIMES; c++) times_[NTIMES * i + c] = *in++;
+      times_changed_[i] = 1;    // (a ghost that a later swap passes on)
+    }
+    return;
   }
+  for (int k = 0; k < n; k++) bins_[first + k] = buf[k];
 }
 
 int IndividualSteps::pack_reverse_comm(int n, int first, double *buf)
 {
-  if (comm_ == Comm::SUMS) {
-    for (int k = 0; k < nsum_ * n; k++) buf[k] = sums_[nsum_ * first + k];
-    return nsum_ * n;
+  if (comm_ == Comm::SUMS) {    // the ghosts with pairs only: count, then (index, sums)
+    double *out = buf + 1;
+    int count = 0;
+    for (int k = 0; k < n; k++) {
+      if (!touched_mark_[first + k]) continue;
+      const double *sum = &sums_[SUM_STRIDE * static_cast<std::size_t>(first + k)];
+      *out++ = k;
+      for (int c = 0; c < nsum_; c++) *out++ = sum[c];
+      count++;
+    }
+    buf[0] = count;
+    return static_cast<int>(out - buf);
   }
   for (int k = 0; k < n; k++) buf[k] = required_[first + k];
   return n;
@@ -634,8 +684,16 @@ int IndividualSteps::pack_reverse_comm(int n, int first, double *buf)
 void IndividualSteps::unpack_reverse_comm(int n, const int *list, const double *buf)
 {
   if (comm_ == Comm::SUMS) {
-    for (int k = 0; k < n; k++)
-      for (int c = 0; c < nsum_; c++) sums_[nsum_ * list[k] + c] += buf[nsum_ * k + c];
+    if (n == 0) return;
+    const int count = static_cast<int>(buf[0]);
+    const double *in = buf + 1;
+    const int nlocal = atom->nlocal;
+    for (int e = 0; e < count; e++, in += 1 + nsum_) {
+      const int i = list[static_cast<int>(in[0])];
+      double *sum = &sums_[SUM_STRIDE * static_cast<std::size_t>(i)];
+      for (int c = 0; c < nsum_; c++) sum[c] += in[1 + c];
+      touch(i, nlocal);    // (a ghost that a later swap passes on)
+    }
     return;
   }
   for (int k = 0; k < n; k++) required_[list[k]] = std::max(required_[list[k]], buf[k]);

@@ -140,20 +140,35 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   std::vector<char> active_;
   std::vector<double> bins_, required_;    // owned and ghost: bins, the limiter's minimum bin
   std::vector<double> times_, sums_;       // owned and ghost times, pair sums (pair_impulses)
-  int nsum_ = 6;                           // sums_ per atom: impulses, and forces if 6
-  LAMMPS_NS::bigint times_step_ = -1;      // the step of the opening whose times_ are valid
+  int nsum_ = 6;                           // sums_ used per atom: impulses, and forces if 6
+  int sums_nlocal_ = 0;                    // the owned atoms of the last pair_impulses()
+  std::vector<int> touched_;               // ghosts with pair sums: only they are sent
+  std::vector<char> touched_mark_;
+  std::vector<char> times_changed_;        // owned and ghost atoms whose times are sent
+  LAMMPS_NS::bigint times_opened_ = -1;    // the steps of the last opening and closing whose
+  LAMMPS_NS::bigint times_closed_ = -1;    // times the ghosts hold (-1: none)
   int times_nall_ = 0;                     // owned + ghost atoms then
   std::vector<int> woken_list_;            // particles woken by the limiter, and their x shift
   std::vector<double> woken_dx_;
-  enum class Comm { ACTIVE, BINS, REQUIRED, TIMES, SUMS } comm_ = Comm::ACTIVE;
+  enum class Comm { ACTIVE, BINS, REQUIRED, TIMES, TIMES_CHANGED, SUMS } comm_ = Comm::ACTIVE;
   double active_total_ = 0.0, updates_ = 0.0, steps_ = 0.0, woken_ = 0.0;
 
   double tick() const;
   double mass(int i) const;
+  // pair sph/astro keeps the pairs it evaluates: for the limiter and the pair kicks
+  bool records_pairs() const { return levels_ > 0 || pair_kicks_; }
   void grow();
   void assign_bins(const std::vector<double> &wanted, bool fresh, LAMMPS_NS::PairSPHAstro *pair);
   void limit(LAMMPS_NS::PairSPHAstro *pair);
   void pair_impulses(LAMMPS_NS::PairSPHAstro *pair, bool closing, bool with_forces);
+  void send_times(bool changed_only);
+  void touch(int i, int nlocal)
+  {
+    if (i >= nlocal && !touched_mark_[i]) {
+      touched_mark_[i] = 1;
+      touched_.push_back(i);
+    }
+  }
   void advance_to_next();
 };
 
