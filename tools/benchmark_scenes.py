@@ -16,7 +16,8 @@ run: the h iteration with grad-h terms, skin 0.5 h), ``sedov16``, ``sedov22``, `
 (examples/sedov to t = 0.1), ``noh24`` (examples/noh to t = 0.6), ``evrard`` (examples/evrard,
 n 16, MSM gravity, to t = 0.8), the same scenes with individual timesteps (``sedov16i``,
 ``sedov22i``, ``sedov35i``, ``noh24i``, ``evrardi``: ``-var steps individual``; their updates
-are the particle-updates fix sph/astro counts; ``sedov16i2``, ``sedov22i2``, ``sedov35i2`` with
+are the particle-updates fix sph/astro counts; the same with pair kicks, ``-var kicks pair``:
+``sedov16ik``, ``sedov22ik``, ``sedov35ik``, ``noh24ik``, ``evrardik``; ``sedov16i2``, ``sedov22i2``, ``sedov35i2`` with
 ``-var limiter 2``; ``sedov16p``, ``sedov22p``, ``sedov35p`` and, with individual steps,
 ``sedov16ip``, ``sedov22ip``, ``sedov35ip``: the Courant signal speed over the neighbours,
 ``-var vsig pairs``; ``sedov16c``, ``sedov22c``, ``sedov35c`` and, with individual steps,
@@ -74,10 +75,12 @@ SCENES = {
     "evrard": ("evrard/in.evrard", {"n": 16, "gravity": "msm", "tend": 0.8,
                                     "thermoevery": 100}),
 }
-# the scenes with individual timesteps (fix sph/astro steps individual): row name + "i"
+# the scenes with individual timesteps (fix sph/astro steps individual): row name + "i"; with
+# pair kicks (kicks pair): + "ik"
 for _name in ("sedov16", "sedov22", "sedov35", "noh24", "evrard"):
     _script, _vars = SCENES[_name]
     SCENES[_name + "i"] = (_script, dict(_vars, steps="individual"))
+    SCENES[_name + "ik"] = (_script, dict(_vars, steps="individual", kicks="pair"))
 # Sedov with individual steps and a limiter of 2 levels (factor 4, SWIFT's): row name + "i2"
 for _name in ("sedov16", "sedov22", "sedov35"):
     _script, _vars = SCENES[_name]
@@ -95,8 +98,8 @@ for _name in ("sedov16", "sedov22", "sedov35"):
 SWIFT_ROWS = {"swift35": 35, "swift56": 56}
 ORDER = ["box1e4", "box1e5", "box1e6", "box1e5i"] + [
     s + v for s in ("sedov16", "sedov22", "sedov35")
-    for v in ("", "p", "i", "ip", "i2", "c", "ic")] + [
-    "noh24", "noh24i", "evrard", "evrardi", "swift35", "swift56"]
+    for v in ("", "p", "i", "ik", "ip", "i2", "c", "ic")] + [
+    "noh24", "noh24i", "noh24ik", "evrard", "evrardi", "evrardik", "swift35", "swift56"]
 
 _LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", re.M)
 # (with individual steps the line gives entries per row made, of reach rows: no half list)

@@ -45,11 +45,11 @@ SCENES = {
     # the same with individual timesteps (fix sph/astro steps individual)
     "sedov16i": ("examples/sedov/in.sedov", ["-var", "n", "16", "-var", "steps", "individual"]),
     # the same with pair kicks (fix sph/astro kicks pair)
-    "sedov16ip": ("examples/sedov/in.sedov", ["-var", "n", "16", "-var", "steps", "individual",
+    "sedov16ik": ("examples/sedov/in.sedov", ["-var", "n", "16", "-var", "steps", "individual",
                                               "-var", "kicks", "pair"]),
     # Sedov, 42 592 particles, individual timesteps with particle and with pair kicks
     "sedov22i": ("examples/sedov/in.sedov", ["-var", "n", "22", "-var", "steps", "individual"]),
-    "sedov22ip": ("examples/sedov/in.sedov", ["-var", "n", "22", "-var", "steps", "individual",
+    "sedov22ik": ("examples/sedov/in.sedov", ["-var", "n", "22", "-var", "steps", "individual",
                                               "-var", "kicks", "pair"]),
     # Evrard collapse, 3 604 particles to t 0.8: direct-summation self-gravity with zeta terms
     "evrard12": ("examples/evrard/in.evrard", ["-var", "n", "12", "-var", "tend", "0.8"]),
