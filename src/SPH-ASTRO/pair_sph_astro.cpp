@@ -285,7 +285,7 @@ PassContext PairSPHAstro::context()
   ctx.tag = atom->tag;
   ctx.error = error;
   ctx.tally = evflag ? this : nullptr;
-  ctx.pair_forces = nullptr;
+  ctx.pairs = nullptr;
   return ctx;
 }
 
@@ -375,8 +375,8 @@ void PairSPHAstro::compute(int eflag, int vflag)
                  STEPS_FIX_ID);
     arrays.steps = {active_, atom->dvector[step_index_->omega], atom->dvector[step_index_->balsara],
                     atom->dvector[step_index_->divv], atom->dvector[step_index_->nneigh]};
-    pair_forces_.clear();    // the limiter and kicks pair: both atoms of each pair, its force
-    if (record_pair_forces_) ctx.pair_forces = &pair_forces_;
+    evaluated_pairs_.clear(record_forces_);    // the limiter, and kicks pair with the forces
+    if (record_pairs_) ctx.pairs = &evaluated_pairs_;
   }
   PairExchange exchange(this);
   ForceEvaluation evaluation(ctx, *opt_, *scheme_, arrays, exchange);
@@ -585,5 +585,5 @@ void *PairSPHAstro::extract_peratom(const char *name, int &ncol)
 double PairSPHAstro::memory_usage()
 {
   return fields_->memory_usage() + lists_->memory_usage() + Pair::memory_usage() +
-      static_cast<double>(pair_forces_.capacity() * sizeof(SPHAstro::PairForce));
+      evaluated_pairs_.memory_usage();
 }

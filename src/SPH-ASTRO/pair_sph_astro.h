@@ -15,7 +15,7 @@ PairStyle(sph/astro,PairSPHAstro);
 #define LMP_PAIR_SPH_ASTRO_H
 
 #include "pair.h"
-#include "sph_astro_pair_force.h"
+#include "sph_astro_evaluated_pairs.h"
 
 #include <initializer_list>
 #include <vector>
@@ -128,19 +128,20 @@ class PairSPHAstro : public Pair {
   // step ends with this step's force evaluation (one flag per atom, valid until the next
   // reneighbouring; null: global stepping). Only the pairs with an active atom are evaluated,
   // and only active atoms get new values (sph_astro_force_evaluation.h)
-  // record: keep each evaluated pair and its force (pair_forces(): the timestep limiter's
-  // neighbours, and the pair kicks of fix sph/astro kicks pair)
-  void set_active(const char *active, bool record = false)
+  // record: keep each evaluated pair (evaluated_pairs(): the timestep limiter's neighbours),
+  // with_forces: and its force (the pair kicks of fix sph/astro kicks pair)
+  void set_active(const char *active, bool record = false, bool with_forces = false)
   {
     active_ = active;
-    record_pair_forces_ = record;
+    record_pairs_ = record;
+    record_forces_ = record && with_forces;
   }
   // the active flags of owned and ghost atoms set for this step (null: global stepping)
   const char *active_flags() const { return active_; }
   // the pairs of the latest evaluation with individual steps, those inside the kernel
-  // support(s) of the force pass, with their pressure and viscous force (when recorded;
-  // valid until the next reneighbouring)
-  const std::vector<SPHAstro::PairForce> &pair_forces() const { return pair_forces_; }
+  // support(s) of the force pass, with their pressure and viscous force if asked (when
+  // recorded; valid until the next reneighbouring)
+  const SPHAstro::EvaluatedPairs &evaluated_pairs() const { return evaluated_pairs_; }
 
   // the communication of one stage of a force evaluation (sph_astro_force_evaluation.h):
   // owned -> ghost copies of these arrays, or the ghosts' parts summed into their owners
@@ -157,8 +158,8 @@ class PairSPHAstro : public Pair {
   SPHAstro::ContinuityIndex *continuity_index_;
   SPHAstro::StepIndex *step_index_;
   const char *active_;
-  std::vector<SPHAstro::PairForce> pair_forces_;
-  bool record_pair_forces_ = false;
+  SPHAstro::EvaluatedPairs evaluated_pairs_;
+  bool record_pairs_ = false, record_forces_ = false;
 
   SPHAstro::Scheme *scheme_;    // what the package's fixes ask for (sph_astro_scheme.h)
   bool entropy_init_pending_, density_init_pending_;

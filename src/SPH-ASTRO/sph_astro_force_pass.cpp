@@ -33,6 +33,7 @@ namespace {
     struct Own {
       ForceParticle pi;
       double fx, fy, fz, vgw, heat, vsig, crate;
+      int recorded;    // the evaluated pairs recorded before i's row
     };
     // per-particle factors of the pressure term (ForceParticle); null: 1 (b, w) or 0 (C)
     const double *prho, *b, *w, *C;
@@ -71,6 +72,7 @@ namespace {
     {
       load(i, own.pi);
       own.fx = own.fy = own.fz = own.vgw = own.heat = own.vsig = own.crate = 0.0;
+      own.recorded = ctx.pairs ? static_cast<int>(ctx.pairs->partner.size()) : 0;
     }
     [[gnu::always_inline]] void pair(int i, int j, double dx, double dy, double dz,
                                      const PairGradient &g, Own &own, bool update_j) const
@@ -95,7 +97,7 @@ namespace {
         if (s.track_signal && c.vsig > f.vsigmax[j]) f.vsigmax[j] = c.vsig;
         if (LEVEL >= FORCE_COMMON && s.alpha_u > 0.0) f.condrate[j] += c.crate_j;
       }
-      if (ctx.pair_forces) ctx.pair_forces->push_back({i, update_j ? j : ~j, c.fpair});
+      if (ctx.pairs) ctx.pairs->add(j, update_j, c.fpair);
       if (ctx.tally)
         ctx.tally->ev_tally(i, j, ctx.p.nlocal, ctx.newton, 0.0, 0.0, c.fpair, dx, dy, dz);
     }
@@ -108,6 +110,7 @@ namespace {
       if (s.energy) dudt[i] += own.heat;
       if (s.track_signal && own.vsig > f.vsigmax[i]) f.vsigmax[i] = own.vsig;
       if (LEVEL >= FORCE_COMMON && s.alpha_u > 0.0) f.condrate[i] += own.crate;
+      if (ctx.pairs) ctx.pairs->end_row(i, own.recorded);
     }
   };
 

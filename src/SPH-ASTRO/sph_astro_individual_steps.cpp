@@ -99,7 +99,7 @@ void IndividualSteps::setup_pre_force(PairSPHAstro *pair)
   // evaluates none; a new one evaluates all
   for (int i = 0; i < nall; i++) active_[i] = !continuing_ && (mask[i] & owner_->groupbit);
   times_opened_ = times_closed_ = -1;
-  pair->set_active(active_.data(), records_pairs());
+  pair->set_active(active_.data(), records_pairs(), pair_kicks_);
 }
 
 void IndividualSteps::start(const std::vector<double> &wanted, double dtmax, double time_left,
@@ -232,7 +232,7 @@ void IndividualSteps::pre_force(PairSPHAstro *pair)
   MPI_Allreduce(&count, &active_total_, 1, MPI_DOUBLE, MPI_SUM, world);
   updates_ += active_total_;
   steps_ += 1.0;
-  pair->set_active(active_.data(), records_pairs());
+  pair->set_active(active_.data(), records_pairs(), pair_kicks_);
 }
 
 void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
@@ -371,11 +371,10 @@ void IndividualSteps::limit(PairSPHAstro *pair)
   // neighbours: the pairs of the force evaluation (inside the kernel support(s); each has an
   // active particle)
   const double levels = levels_;
-  for (const PairForce &p : pair->pair_forces()) {
-    const int i = p.i, j = p.j >= 0 ? p.j : ~p.j;
+  pair->evaluated_pairs().for_each([&](int i, int j, bool, int) {
     required_[i] = std::max(required_[i], bins_[j] - levels);
     required_[j] = std::max(required_[j], bins_[i] - levels);
-  }
+  });
   comm_ = Comm::REQUIRED;
   comm->reverse_comm(owner_, 1);
 
@@ -464,30 +463,43 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_
   sums_nlocal_ = nlocal;
   const double half_tick = 0.5 * tick();
   double **x = atom->x;    // (those of the force evaluation: no drift since)
-  for (const PairForce &p : pair->pair_forces()) {
-    const int i = p.i, j = p.j >= 0 ? p.j : ~p.j;
-    const double f[3] = {(x[i][0] - x[j][0]) * p.fpair, (x[i][1] - x[j][1]) * p.fpair,
-                         (x[i][2] - x[j][2]) * p.fpair};
-    const double *ti = &times_[NTIMES * i], *tj = &times_[NTIMES * j];
-    double w;
-    if (closing) {
-      const double opened = std::max(ti[0], tj[0]);
-      const double end_i = ti[2] > opened ? ti[3] : ti[1], end_j = tj[2] > opened ? tj[3] : tj[1];
-      w = half_tick * (2.0 * ti_next_ - opened - std::min(end_i, end_j));
-    } else {
-      w = half_tick * (std::min(ti[1], tj[1]) - ti_now_);
+  const EvaluatedPairs &pairs = pair->evaluated_pairs();
+  int k = 0;
+  for (const EvaluatedPairs::Row &row : pairs.rows) {
+    const int i = row.i;
+    const double *ti = &times_[NTIMES * i];
+    const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
+    double impulse[3] = {0.0, 0.0, 0.0}, force[3] = {0.0, 0.0, 0.0};
+    for (; k < row.end; k++) {
+      const int jp = pairs.partner[k], j = jp >= 0 ? jp : ~jp;
+      const double fpair = pairs.fpair[k];
+      const double f[3] = {(xi - x[j][0]) * fpair, (yi - x[j][1]) * fpair, (zi - x[j][2]) * fpair};
+      const double *tj = &times_[NTIMES * j];
+      double w;
+      if (closing) {
+        const double opened = std::max(ti[0], tj[0]);
+        const double end_i = ti[2] > opened ? ti[3] : ti[1];
+        const double end_j = tj[2] > opened ? tj[3] : tj[1];
+        w = half_tick * (2.0 * ti_next_ - opened - std::min(end_i, end_j));
+      } else {
+        w = half_tick * (std::min(ti[1], tj[1]) - ti_now_);
+      }
+      for (int d = 0; d < 3; d++) {
+        impulse[d] += w * f[d];
+        force[d] += f[d];
+      }
+      if (jp < 0) continue;
+      double *sj = &sums_[SUM_STRIDE * j];
+      for (int d = 0; d < 3; d++) sj[d] -= w * f[d];
+      if (with_forces)
+        for (int d = 0; d < 3; d++) sj[3 + d] -= f[d];
+      touch(j, nlocal);
     }
     double *si = &sums_[SUM_STRIDE * i];
-    for (int d = 0; d < 3; d++) si[d] += w * f[d];
+    for (int d = 0; d < 3; d++) si[d] += impulse[d];
     if (with_forces)
-      for (int d = 0; d < 3; d++) si[3 + d] += f[d];
+      for (int d = 0; d < 3; d++) si[3 + d] += force[d];
     touch(i, nlocal);
-    if (p.j < 0) continue;
-    double *sj = &sums_[SUM_STRIDE * j];
-    for (int d = 0; d < 3; d++) sj[d] -= w * f[d];
-    if (with_forces)
-      for (int d = 0; d < 3; d++) sj[3 + d] -= f[d];
-    touch(j, nlocal);
   }
   comm_ = Comm::SUMS;
   comm->reverse_comm(owner_, SUM_STRIDE + 2);

@@ -20,10 +20,10 @@
 
 #include "lmptype.h"
 #include "sph_astro_eos.h"
+#include "sph_astro_evaluated_pairs.h"
 #include "sph_astro_fields.h"
 #include "sph_astro_iact.h"
 #include "sph_astro_options.h"
-#include "sph_astro_pair_force.h"
 #include "sph_astro_pair_loop.h"
 
 #include <vector>
@@ -52,8 +52,8 @@ struct PassContext {
   double *alpha;    // per-atom alpha of a viscosity switch (owned + ghost), or null
   const LAMMPS_NS::tagint *tag;
   LAMMPS_NS::Error *error;
-  LAMMPS_NS::Pair *tally;                 // non-null: tally the pair virial (ev_tally)
-  std::vector<PairForce> *pair_forces;    // non-null: the force pass records each pair
+  LAMMPS_NS::Pair *tally;    // non-null: tally the pair virial (ev_tally)
+  EvaluatedPairs *pairs;     // non-null: the force pass records each pair
   int nzero() const { return newton ? p.nall : p.nlocal; }
 };
 

@@ -1,0 +1,70 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
+// The pairs that the force pass evaluates with individual timesteps, kept by rows, so that
+// fix sph/astro can apply the timestep limiter over them and kick both atoms of a pair with
+// the same impulse (momentum conserved to round-off; sph_astro_individual_steps.h).
+
+#ifndef LMP_SPH_ASTRO_EVALUATED_PAIRS_H
+#define LMP_SPH_ASTRO_EVALUATED_PAIRS_H
+
+#include <vector>
+
+namespace SPHAstro {
+
+// Row r: atom rows[r].i with the partners partner[rows[r-1].end .. rows[r].end). A partner
+// j < 0 stands for ~j, a ghost this rank does not update (newton off: the pair is recorded on
+// both ranks, each for its own atom). With forces, fpair[k] gives the pressure and viscous
+// force of pair k: F_ij = fpair (x_i - x_j) on i (the positions of the force evaluation),
+// -F_ij on j.
+struct EvaluatedPairs {
+  struct Row {
+    int i, end;
+  };
+  std::vector<Row> rows;
+  std::vector<int> partner;
+  std::vector<double> fpair;
+  bool forces = false;    // fpair is recorded
+
+  void clear(bool with_forces)
+  {
+    rows.clear();
+    partner.clear();
+    fpair.clear();
+    forces = with_forces;
+  }
+  // the force pass: one pair of the row of i, then the row's end
+  void add(int j, bool update_j, double f)
+  {
+    partner.push_back(update_j ? j : ~j);
+    if (forces) fpair.push_back(f);
+  }
+  void end_row(int i, int begin)
+  {
+    if (static_cast<int>(partner.size()) > begin)
+      rows.push_back({i, static_cast<int>(partner.size())});
+  }
+  // each pair: visit(i, j, update_j, k) with k its index into fpair
+  template <class VISIT> void for_each(VISIT &&visit) const
+  {
+    int k = 0;
+    for (const Row &row : rows)
+      for (; k < row.end; k++) {
+        const int j = partner[k];
+        visit(row.i, j >= 0 ? j : ~j, j >= 0, k);
+      }
+  }
+  double memory_usage() const
+  {
+    return static_cast<double>(rows.capacity() * sizeof(Row) + partner.capacity() * sizeof(int) +
+                               fpair.capacity() * sizeof(double));
+  }
+};
+
+}    // namespace SPHAstro
+
+#endif
