@@ -5,10 +5,12 @@
    (the same licence as LAMMPS); see the LICENSE file.
 ------------------------------------------------------------------------- */
 
-// Individual timesteps without LAMMPS: the time line's bins (sph_astro_time_bins.h) and the
-// due pairs of a step (sph_astro_due_pairs.h) against brute force.
+// Individual timesteps without LAMMPS: the time line's bins (sph_astro_time_bins.h), the
+// due pairs of a step (sph_astro_due_pairs.h) against brute force, and the record of the
+// evaluated pairs (sph_astro_evaluated_pairs.h).
 
 #include "sph_astro_due_pairs.h"
+#include "sph_astro_evaluated_pairs.h"
 #include "sph_astro_time_bins.h"
 
 #include <gtest/gtest.h>
@@ -17,6 +19,7 @@
 #include <cmath>
 #include <random>
 #include <set>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -133,4 +136,45 @@ TEST(DuePairs, ExactlyThePairsWithAnActiveAtomInTheListsOrder)
         return n;
       }());
   }
+}
+
+// the force pass's record of its pairs (sph_astro_evaluated_pairs.h): rows without pairs are
+// left out, each pair is visited once with its row's atom, its partner, whether this rank
+// updates the partner, and its force's index
+TEST(EvaluatedPairs, EachRecordedPairIsVisitedOnceWithItsRowAtom)
+{
+  EvaluatedPairs pairs;
+  pairs.clear(true);
+  const std::vector<std::vector<std::pair<int, bool>>> rows = {
+      {{5, true}, {7, false}}, {}, {{0, true}}, {}, {{9, false}, {3, true}, {4, true}}};
+  std::vector<std::tuple<int, int, bool, double>> expected;
+  double f = 0.5;
+  for (std::size_t i = 0; i < rows.size(); i++) {
+    const int begin = static_cast<int>(pairs.partner.size());
+    for (const auto &[j, update_j] : rows[i]) {
+      pairs.add(j, update_j, f);
+      expected.emplace_back(static_cast<int>(i), j, update_j, f);
+      f += 1.0;
+    }
+    pairs.end_row(static_cast<int>(i), begin);
+  }
+  EXPECT_EQ(pairs.rows.size(), 3u);
+  std::vector<std::tuple<int, int, bool, double>> visited;
+  pairs.for_each([&](int i, int j, bool update_j, int k) {
+    visited.emplace_back(i, j, update_j, pairs.fpair[k]);
+  });
+  EXPECT_EQ(visited, expected);
+
+  pairs.clear(false);    // the limiter alone: no forces kept
+  pairs.add(2, true, 1.0);
+  pairs.end_row(1, 0);
+  EXPECT_TRUE(pairs.fpair.empty());
+  int count = 0;
+  pairs.for_each([&](int i, int j, bool update_j, int) {
+    EXPECT_EQ(i, 1);
+    EXPECT_EQ(j, 2);
+    EXPECT_TRUE(update_j);
+    count++;
+  });
+  EXPECT_EQ(count, 1);
 }
