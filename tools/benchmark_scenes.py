@@ -18,8 +18,9 @@ n 16, MSM gravity, to t = 0.8), the same scenes with individual timesteps (``sed
 ``sedov22i``, ``sedov35i``, ``noh24i``, ``evrardi``: ``-var steps individual``; their updates
 are the particle-updates fix sph/astro counts; the same with pair kicks, ``-var kicks pair``:
 ``sedov16ik``, ``sedov22ik``, ``sedov35ik``, ``noh24ik``, ``evrardik``; ``sedov16i2``,
-``sedov22i2``, ``sedov35i2`` with ``-var limiter 2``; ``sedov16p``, ``sedov22p``, ``sedov35p`` and, with individual steps,
-``sedov16ip``, ``sedov22ip``, ``sedov35ip``: the Courant signal speed over the neighbours,
+``sedov22i2``, ``sedov35i2`` with ``-var limiter 2``; ``sedov16p``, ``sedov22p``,
+``sedov35p`` and, with individual steps, ``sedov16ip``, ``sedov22ip``, ``sedov35ip``: the
+Courant signal speed over the neighbours,
 ``-var vsig pairs``; ``sedov16c``, ``sedov22c``, ``sedov35c`` and, with individual steps,
 ``sedov16ic``, ``sedov22ic``, ``sedov35ic``: SWIFT's Courant criterion, ``-var vsig pairs
 -var courant 0.4``), and ``swift35`` and ``swift56``: SWIFT's Sedov at 42 875 and
