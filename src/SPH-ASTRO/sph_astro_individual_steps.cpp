@@ -630,8 +630,10 @@ int IndividualSteps::pack_forward_comm(int n, int *list, double *buf)
       for (int c = 0; c < NTIMES; c++) buf[NTIMES * k + c] = times_[NTIMES * list[k] + c];
     return NTIMES * n;
   }
-  // the changed times, or the active atoms: count, then (index, times) or index
+  // the changed times, or the active atoms: count, then (index, times) or index (nothing for
+  // no atoms: comm_style tiled sends what pack returns, and its receiver expects n x size)
   if (comm_ == Comm::TIMES_CHANGED || comm_ == Comm::ACTIVE) {
+    if (n == 0) return 0;
     const bool times = comm_ == Comm::TIMES_CHANGED;
     double *out = buf + 1;
     for (int k = 0; k < n; k++) {
@@ -677,6 +679,7 @@ void IndividualSteps::unpack_forward_comm(int n, int first, const double *buf)
 int IndividualSteps::pack_reverse_comm(int n, int first, double *buf)
 {
   if (comm_ == Comm::SUMS) {    // the ghosts with pairs only: count, then (index, sums)
+    if (n == 0) return 0;
     double *out = buf + 1;
     int count = 0;
     for (int k = 0; k < n; k++) {
