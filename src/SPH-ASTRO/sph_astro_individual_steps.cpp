@@ -33,6 +33,33 @@ namespace {
   constexpr int SUM_STRIDE = 6;    // sums_ per atom: impulses, forces
   const double NO_PAIR_KICKS[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};    // kicks particle
 
+  // A sparse message over n atoms: the count of the chosen ones, then each one's position k
+  // in the message and its width values. Nothing at all for n = 0: comm_style tiled sends what
+  // pack returns, and its receiver expects n x size.
+  // pack: chosen(k), values(k, out) writes width values
+  template <class CHOSEN, class VALUES>
+  int pack_sparse(int n, int width, double *buf, CHOSEN &&chosen, VALUES &&values)
+  {
+    if (n == 0) return 0;
+    double *out = buf + 1;
+    for (int k = 0; k < n; k++) {
+      if (!chosen(k)) continue;
+      *out++ = k;
+      values(k, out);
+      out += width;
+    }
+    buf[0] = static_cast<double>((out - buf - 1) / (width + 1));
+    return static_cast<int>(out - buf);
+  }
+  // unpack: take(k, in) reads width values
+  template <class TAKE> void unpack_sparse(int n, int width, const double *buf, TAKE &&take)
+  {
+    if (n == 0) return;
+    const int count = static_cast<int>(buf[0]);
+    const double *in = buf + 1;
+    for (int e = 0; e < count; e++, in += width + 1) take(static_cast<int>(in[0]), in + 1);
+  }
+
 }    // namespace
 
 IndividualSteps::IndividualSteps(LAMMPS *lmp, Fix *owner, int levels, bool pair_kicks) :
@@ -530,11 +557,11 @@ void IndividualSteps::send_times(bool changed_only)
     ti[1] = end[i];
     ti[2] = woken[i];
     ti[3] = end_then[i];
-    times_changed_[i] = 1;
+    if (changed_only) times_changed_[i] = 1;
   }
   comm_ = changed_only ? Comm::TIMES_CHANGED : Comm::TIMES;
   comm->forward_comm(owner_, NTIMES + 2);
-  std::fill(times_changed_.begin(), times_changed_.begin() + nall, 0);
+  if (changed_only) std::fill(times_changed_.begin(), times_changed_.begin() + nall, 0);
 }
 
 // the next LAMMPS step ends where the first particle step ends; at the end of a cycle (all
@@ -625,73 +652,68 @@ std::string IndividualSteps::shortest_step() const
 
 int IndividualSteps::pack_forward_comm(int n, int *list, double *buf)
 {
-  if (comm_ == Comm::TIMES) {
-    for (int k = 0; k < n; k++)
-      for (int c = 0; c < NTIMES; c++) buf[NTIMES * k + c] = times_[NTIMES * list[k] + c];
-    return NTIMES * n;
+  switch (comm_) {
+    case Comm::TIMES:
+      for (int k = 0; k < n; k++)
+        for (int c = 0; c < NTIMES; c++) buf[NTIMES * k + c] = times_[NTIMES * list[k] + c];
+      return NTIMES * n;
+    case Comm::TIMES_CHANGED:
+      return pack_sparse(
+          n, NTIMES, buf,
+          [&](int k) {
+            return times_changed_[list[k]] != 0;
+          },
+          [&](int k, double *out) {
+            std::copy_n(&times_[NTIMES * list[k]], NTIMES, out);
+          });
+    case Comm::ACTIVE:
+      return pack_sparse(
+          n, 0, buf,
+          [&](int k) {
+            return active_[list[k]] != 0;
+          },
+          [](int, double *) {
+          });
+    default:
+      for (int k = 0; k < n; k++) buf[k] = bins_[list[k]];
+      return n;
   }
-  // the changed times, or the active atoms: count, then (index, times) or index (nothing for
-  // no atoms: comm_style tiled sends what pack returns, and its receiver expects n x size)
-  if (comm_ == Comm::TIMES_CHANGED || comm_ == Comm::ACTIVE) {
-    if (n == 0) return 0;
-    const bool times = comm_ == Comm::TIMES_CHANGED;
-    double *out = buf + 1;
-    for (int k = 0; k < n; k++) {
-      const int i = list[k];
-      if (!(times ? times_changed_[i] : active_[i])) continue;
-      *out++ = k;
-      if (times)
-        for (int c = 0; c < NTIMES; c++) *out++ = times_[NTIMES * i + c];
-    }
-    buf[0] = static_cast<double>((out - buf - 1) / (times ? NTIMES + 1 : 1));
-    return static_cast<int>(out - buf);
-  }
-  for (int k = 0; k < n; k++) buf[k] = bins_[list[k]];
-  return n;
 }
 
 void IndividualSteps::unpack_forward_comm(int n, int first, const double *buf)
 {
-  if (comm_ == Comm::TIMES) {
-    for (int k = 0; k < NTIMES * n; k++) times_[NTIMES * first + k] = buf[k];
-    return;
+  switch (comm_) {
+    case Comm::TIMES:
+      std::copy_n(buf, NTIMES * n, &times_[NTIMES * first]);
+      return;
+    case Comm::TIMES_CHANGED:
+      unpack_sparse(n, NTIMES, buf, [&](int k, const double *in) {
+        std::copy_n(in, NTIMES, &times_[NTIMES * (first + k)]);
+        times_changed_[first + k] = 1;    // (a ghost that a later swap passes on)
+      });
+      return;
+    case Comm::ACTIVE:
+      std::fill_n(active_.begin() + first, n, 0);
+      unpack_sparse(n, 0, buf, [&](int k, const double *) {
+        active_[first + k] = 1;
+      });
+      return;
+    default:
+      for (int k = 0; k < n; k++) bins_[first + k] = buf[k];
   }
-  if (comm_ == Comm::TIMES_CHANGED || comm_ == Comm::ACTIVE) {
-    if (n == 0) return;
-    const bool times = comm_ == Comm::TIMES_CHANGED;
-    const int count = static_cast<int>(buf[0]);
-    const double *in = buf + 1;
-    if (!times) std::fill_n(active_.begin() + first, n, 0);
-    for (int e = 0; e < count; e++) {
-      const int i = first + static_cast<int>(*in++);
-      if (!times) {
-        active_[i] = 1;
-        continue;
-      }
-      for (int c = 0; c < NTIMES; c++) times_[NTIMES * i + c] = *in++;
-      times_changed_[i] = 1;    // (a ghost that a later swap passes on)
-    }
-    return;
-  }
-  for (int k = 0; k < n; k++) bins_[first + k] = buf[k];
 }
 
 int IndividualSteps::pack_reverse_comm(int n, int first, double *buf)
 {
-  if (comm_ == Comm::SUMS) {    // the ghosts with pairs only: count, then (index, sums)
-    if (n == 0) return 0;
-    double *out = buf + 1;
-    int count = 0;
-    for (int k = 0; k < n; k++) {
-      if (!touched_mark_[first + k]) continue;
-      const double *sum = &sums_[SUM_STRIDE * static_cast<std::size_t>(first + k)];
-      *out++ = k;
-      for (int c = 0; c < nsum_; c++) *out++ = sum[c];
-      count++;
-    }
-    buf[0] = count;
-    return static_cast<int>(out - buf);
-  }
+  if (comm_ == Comm::SUMS)    // the ghosts with pairs only
+    return pack_sparse(
+        n, nsum_, buf,
+        [&](int k) {
+          return touched_mark_[first + k] != 0;
+        },
+        [&](int k, double *out) {
+          std::copy_n(&sums_[SUM_STRIDE * static_cast<std::size_t>(first + k)], nsum_, out);
+        });
   for (int k = 0; k < n; k++) buf[k] = required_[first + k];
   return n;
 }
@@ -699,16 +721,13 @@ int IndividualSteps::pack_reverse_comm(int n, int first, double *buf)
 void IndividualSteps::unpack_reverse_comm(int n, const int *list, const double *buf)
 {
   if (comm_ == Comm::SUMS) {
-    if (n == 0) return;
-    const int count = static_cast<int>(buf[0]);
-    const double *in = buf + 1;
     const int nlocal = atom->nlocal;
-    for (int e = 0; e < count; e++, in += 1 + nsum_) {
-      const int i = list[static_cast<int>(in[0])];
+    unpack_sparse(n, nsum_, buf, [&](int k, const double *in) {
+      const int i = list[k];
       double *sum = &sums_[SUM_STRIDE * static_cast<std::size_t>(i)];
-      for (int c = 0; c < nsum_; c++) sum[c] += in[1 + c];
+      for (int c = 0; c < nsum_; c++) sum[c] += in[c];
       touch(i, nlocal);    // (a ghost that a later swap passes on)
-    }
+    });
     return;
   }
   for (int k = 0; k < n; k++) required_[list[k]] = std::max(required_[list[k]], buf[k]);

@@ -325,17 +325,13 @@ void NeighbourLists::prepare(const char *active)
 NeighView NeighbourLists::due(const double *h, const char *active)
 {
   follow_growth(h);
-  if (active_only_) {
-    due_view_ = due_from_reach_rows(active);
-    return due_view_;
-  }
+  if (active_only_) return due_from_reach_rows(active);
   const NeighView half = half_.view(inum_, ilist_.data());
   if (!due_indexed_) {
     due_.index(half, atom->nlocal + atom->nghost);
     due_indexed_ = true;
   }
-  due_view_ = due_.select(half, atom->nlocal, atom->nlocal + atom->nghost, active);
-  return due_view_;
+  return due_.select(half, atom->nlocal, atom->nlocal + atom->nghost, active);
 }
 
 NeighView NeighbourLists::due_from_reach_rows(const char *active)

@@ -125,8 +125,6 @@ class NeighbourLists : protected LAMMPS_NS::Pointers {
   // individual steps: the pairs with an active atom, each once, after the extension half()
   // makes (collective)
   NeighView due(const double *h, const char *active);
-  // the due pairs of the last due()
-  const NeighView &due_view() const { return due_view_; }
   // the largest h each row serves (owned and ghost)
   const double *limits() const { return hl_.data(); }
 
@@ -152,7 +150,6 @@ class NeighbourLists : protected LAMMPS_NS::Pointers {
   SearchStatistics stats_;
   DuePairs due_;
   bool due_indexed_ = false;    // due_ holds the index of the current half list
-  NeighView due_view_{0, nullptr, nullptr, nullptr};
   bool active_only_ = false;    // the lists were made with active_only
   double pad_ = 0.0;            // the pad of the latest build (rows made later use it)
   LAMMPS_NS::bigint rows_since_build_ = 0;
