@@ -84,6 +84,8 @@ void IndividualSteps::grow()
     active_.resize(n);
     bins_.resize(n);
     required_.resize(n);
+    bins_sent_.resize(n);
+    bins_changed_.resize(n);
   }
 }
 
@@ -115,6 +117,7 @@ void IndividualSteps::init(const StateIndex &state, bool state_unchanged)
                STEPS_FIX_ID);
   continuing_ = started_ && state_unchanged && hierarchy_step_ == update->ntimestep;
   times_opened_ = times_closed_ = -1;    // the run's setup sends the ghosts anew
+  bins_sent_step_ = -1;
 }
 
 void IndividualSteps::setup_pre_force(PairSPHAstro *pair)
@@ -125,7 +128,7 @@ void IndividualSteps::setup_pre_force(PairSPHAstro *pair)
   // a continued hierarchy has every particle's values from its last evaluation: the setup
   // evaluates none; a new one evaluates all
   for (int i = 0; i < nall; i++) active_[i] = !continuing_ && (mask[i] & owner_->groupbit);
-  times_opened_ = times_closed_ = -1;
+  times_opened_ = times_closed_ = bins_sent_step_ = -1;
   pair->set_active(active_.data(), records_pairs(), pair_kicks_);
 }
 
@@ -387,13 +390,32 @@ void IndividualSteps::assign_bins(const std::vector<double> &wanted, bool fresh,
   }
 }
 
+// the owned atoms' bins to their ghosts: those that changed since the last send (the active and
+// woken ones), or all where the ghosts' copies may not be those atoms' (a reneighbouring, a
+// step without a send, a new run)
+void IndividualSteps::send_bins()
+{
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  const bigint step = update->ntimestep;
+  const bool changed_only = bins_sent_step_ == step - 1 && neighbor->ago != 0 && bins_nall_ == nall;
+  for (int i = 0; i < nlocal; i++) {
+    bins_changed_[i] = bins_[i] != bins_sent_[i];
+    bins_sent_[i] = bins_[i];
+  }
+  comm_ = changed_only ? Comm::BINS_CHANGED : Comm::BINS;
+  comm->forward_comm(owner_, 3);
+  std::fill(bins_changed_.begin(), bins_changed_.begin() + nall, 0);
+  bins_sent_step_ = step;
+  bins_nall_ = nall;
+}
+
 // the timestep limiter over the pairs of this step's evaluation (each has an active particle)
 void IndividualSteps::limit(PairSPHAstro *pair)
 {
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
-  comm_ = Comm::BINS;
-  comm->forward_comm(owner_, 1);
+  send_bins();
   std::fill(required_.begin(), required_.begin() + nall, -1.0);
   // neighbours: the pairs of the force evaluation (inside the kernel support(s); each has an
   // active particle)
@@ -402,8 +424,8 @@ void IndividualSteps::limit(PairSPHAstro *pair)
     required_[i] = std::max(required_[i], bins_[j] - levels);
     required_[j] = std::max(required_[j], bins_[i] - levels);
   });
-  comm_ = Comm::REQUIRED;
-  comm->reverse_comm(owner_, 1);
+  comm_ = Comm::REQUIRED;    // (the ghosts in a pair only)
+  comm->reverse_comm(owner_, 3);
 
   const double t = tick();
   const int *mask = atom->mask;
@@ -674,6 +696,15 @@ int IndividualSteps::pack_forward_comm(int n, int *list, double *buf)
           },
           [](int, double *) {
           });
+    case Comm::BINS_CHANGED:
+      return pack_sparse(
+          n, 1, buf,
+          [&](int k) {
+            return bins_changed_[list[k]] != 0;
+          },
+          [&](int k, double *out) {
+            *out = bins_[list[k]];
+          });
     default:
       for (int k = 0; k < n; k++) buf[k] = bins_[list[k]];
       return n;
@@ -698,6 +729,12 @@ void IndividualSteps::unpack_forward_comm(int n, int first, const double *buf)
         active_[first + k] = 1;
       });
       return;
+    case Comm::BINS_CHANGED:
+      unpack_sparse(n, 1, buf, [&](int k, const double *in) {
+        bins_[first + k] = *in;
+        bins_changed_[first + k] = 1;    // (a ghost that a later swap passes on)
+      });
+      return;
     default:
       for (int k = 0; k < n; k++) bins_[first + k] = buf[k];
   }
@@ -714,8 +751,14 @@ int IndividualSteps::pack_reverse_comm(int n, int first, double *buf)
         [&](int k, double *out) {
           std::copy_n(&sums_[SUM_STRIDE * static_cast<std::size_t>(first + k)], nsum_, out);
         });
-  for (int k = 0; k < n; k++) buf[k] = required_[first + k];
-  return n;
+  return pack_sparse(    // REQUIRED: the ghosts in a pair (a bin, not the -1 of none)
+      n, 1, buf,
+      [&](int k) {
+        return required_[first + k] >= 0.0;
+      },
+      [&](int k, double *out) {
+        *out = required_[first + k];
+      });
 }
 
 void IndividualSteps::unpack_reverse_comm(int n, const int *list, const double *buf)
@@ -730,7 +773,9 @@ void IndividualSteps::unpack_reverse_comm(int n, const int *list, const double *
     });
     return;
   }
-  for (int k = 0; k < n; k++) required_[list[k]] = std::max(required_[list[k]], buf[k]);
+  unpack_sparse(n, 1, buf, [&](int k, const double *in) {
+    required_[list[k]] = std::max(required_[list[k]], *in);
+  });
 }
 
 void IndividualSteps::write_restart(std::vector<double> &list) const

@@ -138,11 +138,15 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   double dt_max_ = 0.0;
   LAMMPS_NS::bigint hierarchy_step_ = -1;    // the step the hierarchy's state belongs to
   std::vector<char> active_;
-  std::vector<double> bins_, required_;    // owned and ghost: bins, the limiter's minimum bin
-  std::vector<double> times_, sums_;       // owned and ghost times, pair sums (pair_impulses)
-  int nsum_ = 6;                           // sums_ used per atom: impulses, and forces if 6
-  int sums_nlocal_ = 0;                    // the owned atoms of the last pair_impulses()
-  std::vector<int> touched_;               // ghosts with pair sums: only they are sent
+  std::vector<double> bins_, required_;      // owned and ghost: bins, the limiter's minimum bin
+  std::vector<double> bins_sent_;            // owned: the bins last sent to the ghosts
+  std::vector<char> bins_changed_;           // owned and ghost atoms whose bins are sent
+  LAMMPS_NS::bigint bins_sent_step_ = -1;    // the step of the last send (-1: none this run)
+  int bins_nall_ = 0;                        // owned + ghost atoms then
+  std::vector<double> times_, sums_;         // owned and ghost times, pair sums (pair_impulses)
+  int nsum_ = 6;                             // sums_ used per atom: impulses, and forces if 6
+  int sums_nlocal_ = 0;                      // the owned atoms of the last pair_impulses()
+  std::vector<int> touched_;                 // ghosts with pair sums: only they are sent
   std::vector<char> touched_mark_;
   std::vector<char> times_changed_;        // owned and ghost atoms whose times are sent
   LAMMPS_NS::bigint times_opened_ = -1;    // the steps of the last opening and closing whose
@@ -150,7 +154,15 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   int times_nall_ = 0;                     // owned + ghost atoms then
   std::vector<int> woken_list_;            // particles woken by the limiter, and their x shift
   std::vector<double> woken_dx_;
-  enum class Comm { ACTIVE, BINS, REQUIRED, TIMES, TIMES_CHANGED, SUMS } comm_ = Comm::ACTIVE;
+  enum class Comm {
+    ACTIVE,
+    BINS,
+    BINS_CHANGED,
+    REQUIRED,
+    TIMES,
+    TIMES_CHANGED,
+    SUMS
+  } comm_ = Comm::ACTIVE;
   double active_total_ = 0.0, updates_ = 0.0, steps_ = 0.0, woken_ = 0.0;
 
   double tick() const;
@@ -162,6 +174,7 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   void limit(LAMMPS_NS::PairSPHAstro *pair);
   void pair_impulses(LAMMPS_NS::PairSPHAstro *pair, bool closing, bool with_forces);
   void send_times(bool changed_only);
+  void send_bins();
   void touch(int i, int nlocal)
   {
     if (i >= nlocal && !touched_mark_[i]) {
