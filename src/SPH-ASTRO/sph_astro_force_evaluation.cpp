@@ -19,6 +19,7 @@ EvaluationResult ForceEvaluation::run(NeighbourLists &lists, const GradhSettings
 {
   EvaluationResult result;
   h_cap_ = h_cap;
+  vest_sent_ = false;
   Fields &f = *ctx_.f;
   if (scheme_.hmode == Scheme::HMode::DHDT)
     exchange_.forward({{a_.h, nullptr, 1, false}});    // the ghosts' h of this step
@@ -89,7 +90,7 @@ void ForceEvaluation::density(const GradhSettings &gradh, GradhStatistics &hstat
   Fields &f = *ctx_.f;
   if (o_.pressure_energy) exchange_.forward({{ctx_.uest, nullptr, 1, false}});    // their u
   if (scheme_.gradh()) {
-    if (gradh.sums != VelocitySums::NONE) exchange_.forward({{nullptr, ctx_.vest, 3, false, true}});
+    if (gradh.sums != VelocitySums::NONE) forward_vest();
     density_gradh(ctx_, gradh, hstats);
     result.counted = true;
     result.h_failures = hstats.failures;
@@ -120,7 +121,7 @@ void ForceEvaluation::gradients()
   const bool gradh = scheme_.gradh();
   if (o_.reconstruction()) {    // grad v (and from it div v and curl v)
     if (!gradh) {
-      exchange_.forward({{nullptr, ctx_.vest, 3, false, true}});
+      forward_vest();
       velocity_sums(ctx_, o_.symmetrise_kernel, VelocitySums::GRADIENT);
       if (ctx_.newton) exchange_.reverse({{nullptr, f.vgsum, VGRAD_SUMS, false}});
     }
@@ -128,7 +129,7 @@ void ForceEvaluation::gradients()
     if (scheme_.curl) finish_curl(ctx_, gradh, o_.balsara);
   } else if (scheme_.curl) {
     if (!gradh) {    // (with grad-h terms the sums come from the h iteration)
-      exchange_.forward({{nullptr, ctx_.vest, 3, false, true}});
+      forward_vest();
       velocity_sums(ctx_, o_.symmetrise_kernel, VelocitySums::CURL);
       if (ctx_.newton) exchange_.reverse({{nullptr, f.dcurl, 4, false}});
     }
@@ -136,8 +137,16 @@ void ForceEvaluation::gradients()
   }
 }
 
+// the ghosts' predicted velocities (once per evaluation: nothing changes them in between)
+void ForceEvaluation::forward_vest()
+{
+  exchange_.forward({{nullptr, ctx_.vest, 3, false, true}});
+  vest_sent_ = true;
+}
+
 // the ghosts' copy of what the force pass reads; u_est goes with it where a term reads the
-// partner's u (with formulation pressure-energy it went before the density pass already)
+// partner's u (with formulation pressure-energy it went before the density pass already), v_est
+// unless a velocity sum took it already
 void ForceEvaluation::forward_state()
 {
   Fields &f = *ctx_.f;
@@ -147,7 +156,7 @@ void ForceEvaluation::forward_state()
   exchange_.forward({{ctx_.rho, nullptr, 1, false},
                      {f.pressure, nullptr, 1, false},
                      {f.soundspeed, nullptr, 1, false},
-                     {nullptr, ctx_.vest, 3, false, true},
+                     {nullptr, vest_sent_ ? nullptr : ctx_.vest, 3, false, true},
                      {gradh ? f.omega : nullptr, nullptr, 1, false},
                      {gradh && o_.pressure_energy ? f.pe_gradh : nullptr, nullptr, 1, false},
                      {ctx_.alpha, nullptr, 1, false},

@@ -87,6 +87,7 @@ class ForceEvaluation {
   double h_cap_ = 0.0;
   std::vector<int> active_owned_;
   std::vector<double> rho_kept_;
+  bool vest_sent_ = false;    // the ghosts have this evaluation's v_est
 
   bool individual() const { return a_.steps.active != nullptr; }
   // individual steps: the half list's pairs with an active atom
@@ -100,6 +101,7 @@ class ForceEvaluation {
                EvaluationResult &result);
   void equation_of_state(bool initialise_entropy);
   void gradients();
+  void forward_vest();
   void forward_state();
   void force();
   void conduction();
