@@ -321,6 +321,15 @@ class PairExchange : public SPHAstro::Exchange {
   explicit PairExchange(PairSPHAstro *pair) : pair_(pair) {}
   void forward(std::initializer_list<CommField> fields) override { pair_->forward(fields); }
   void reverse(std::initializer_list<CommField> fields) override { pair_->reverse(fields); }
+  void forward_chosen(std::initializer_list<CommField> fields, const char *chosen) override
+  {
+    pair_->forward(fields, chosen);
+  }
+  void reverse_chosen(std::initializer_list<CommField> fields, const char *chosen) override
+  {
+    pair_->reverse(fields, chosen);
+  }
+  void gather_marks(char *marks) override { pair_->gather_marks(marks); }
 
  private:
   PairSPHAstro *pair_;
@@ -396,26 +405,36 @@ void PairSPHAstro::compute(int eflag, int vflag)
    communication: each stage names its arrays; pack and unpack walk the table
 ------------------------------------------------------------------------- */
 
-void PairSPHAstro::forward(std::initializer_list<CommField> fields)
+// (chosen: a sparse stage; per atom its values and its position, plus one count per message)
+void PairSPHAstro::forward(std::initializer_list<CommField> fields, const char *chosen)
 {
-  const int size = comm_table_->set(fields);
-  if (size < 0 || size > comm_forward)
+  const int size = comm_table_->set(fields, chosen);
+  const int bound = chosen ? size + 2 : size;
+  if (size < 0 || bound > comm_forward)
     error->one(FLERR,
                "pair_style sph/astro: a forward stage sends {} values per atom, more than "
                "the {} its buffer holds (a bug: please report it)",
-               size, comm_forward);
-  if (size) comm->forward_comm(this, size);
+               bound, comm_forward);
+  if (size) comm->forward_comm(this, bound);
 }
 
-void PairSPHAstro::reverse(std::initializer_list<CommField> fields)
+void PairSPHAstro::reverse(std::initializer_list<CommField> fields, const char *chosen)
 {
-  const int size = comm_table_->set(fields);
-  if (size < 0 || size > comm_reverse)
+  const int size = comm_table_->set(fields, chosen);
+  const int bound = chosen ? size + 2 : size;
+  if (size < 0 || bound > comm_reverse)
     error->one(FLERR,
                "pair_style sph/astro: a reverse stage sends {} values per atom, more than "
                "the {} its buffer holds (a bug: please report it)",
-               size, comm_reverse);
-  if (size) comm->reverse_comm(this, size);
+               bound, comm_reverse);
+  if (size) comm->reverse_comm(this, bound);
+}
+
+void PairSPHAstro::gather_marks(char *marks)
+{
+  marks_ = marks;
+  comm->reverse_comm(this, 2);
+  marks_ = nullptr;
 }
 
 int PairSPHAstro::pack_forward_comm(int n, int *list, double *buf, int pbc_flag, int *pbc)
@@ -435,12 +454,24 @@ void PairSPHAstro::unpack_forward_comm(int n, int first, double *buf)
 
 int PairSPHAstro::pack_reverse_comm(int n, int first, double *buf)
 {
-  return comm_table_->pack_range(first, n, buf);
+  if (!marks_) return comm_table_->pack_range(first, n, buf);
+  if (n == 0) return 0;    // (comm_style tiled sends what pack returns)
+  int count = 0;
+  for (int k = 0; k < n; k++)
+    if (marks_[first + k]) buf[1 + count++] = k;
+  buf[0] = count;
+  return 1 + count;
 }
 
 void PairSPHAstro::unpack_reverse_comm(int n, int *list, double *buf)
 {
-  comm_table_->accumulate(n, list, buf);
+  if (!marks_) {
+    comm_table_->accumulate(n, list, buf);
+    return;
+  }
+  if (n == 0) return;
+  const int count = static_cast<int>(buf[0]);
+  for (int e = 0; e < count; e++) marks_[list[static_cast<int>(buf[1 + e])]] = 1;
 }
 
 /* ---------------------------------------------------------------------- */

@@ -145,8 +145,11 @@ class PairSPHAstro : public Pair {
 
   // the communication of one stage of a force evaluation (sph_astro_force_evaluation.h):
   // owned -> ghost copies of these arrays, or the ghosts' parts summed into their owners
-  void forward(std::initializer_list<SPHAstro::CommField> fields);
-  void reverse(std::initializer_list<SPHAstro::CommField> fields);
+  // (chosen: only the atoms marked there, per owned and ghost atom)
+  void forward(std::initializer_list<SPHAstro::CommField> fields, const char *chosen = nullptr);
+  void reverse(std::initializer_list<SPHAstro::CommField> fields, const char *chosen = nullptr);
+  // the ghosts' marks to their owners (and to the ghosts a later swap passes on)
+  void gather_marks(char *marks);
 
  protected:
   SPHAstro::PairOptions *opt_;
@@ -179,6 +182,7 @@ class PairSPHAstro : public Pair {
 
   // communication: the arrays a stage sends (forward) or sums (reverse)
   SPHAstro::CommTable *comm_table_;
+  char *marks_ = nullptr;    // gather_marks(): its reverse communication
 
   void allocate();
   bool gradh() const;

@@ -90,6 +90,7 @@ PairSPHAstroGravity::PairSPHAstroGravity(LAMMPS *lmp) : Pair(lmp)
   zeta_active_ = false;
   sph_ = nullptr;
   zeta_ = nullptr;
+  zeta_over_omega_ = nullptr;
   zeta_tree_ = new SPHAstro::NeighbourTree();
   nmax_ = 0;
   comm_stage_ = Stage::H;
@@ -99,7 +100,7 @@ PairSPHAstroGravity::PairSPHAstroGravity(LAMMPS *lmp) : Pair(lmp)
   single_enable = 0;
   restartinfo = 1;
   one_coeff = 1;
-  comm_forward = 1;    // softening length h of the ghosts, or zeta
+  comm_forward = 2;    // softening length h of the ghosts, or zeta and zeta / Omega
   comm_reverse = 1;    // partial sums of zeta
   // the long-range solvers check these flags; a non-gravity solver is refused in extract()
   ewaldflag = pppmflag = msmflag = 1;
@@ -112,6 +113,7 @@ PairSPHAstroGravity::~PairSPHAstroGravity()
   delete state_;
   delete zeta_tree_;
   memory->destroy(zeta_);
+  memory->destroy(zeta_over_omega_);
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
@@ -429,6 +431,8 @@ void PairSPHAstroGravity::compute_zeta()
     nmax_ = atom->nmax;
     memory->destroy(zeta_);
     memory->create(zeta_, nmax_, "pair:sph/astro/gravity:zeta");
+    memory->destroy(zeta_over_omega_);
+    memory->create(zeta_over_omega_, nmax_, "pair:sph/astro/gravity:zeta_over_omega");
   }
   double **x = atom->x;
   const int *type = atom->type;
@@ -524,9 +528,10 @@ void PairSPHAstroGravity::compute_zeta()
     zo_all_.resize(ntotal_);
     MPI_Allgatherv(mine.data(), nlocal, MPI_DOUBLE, zo_all_.data(), gather_counts_.data(),
                    gather_displs_.data(), MPI_DOUBLE, world);
-  } else {
+  } else {    // (the owners' values: pair sph/astro need not send Omega to every ghost)
+    for (int i = 0; i < nlocal; i++) zeta_over_omega_[i] = zeta_[i] / omega[i];
     comm_stage_ = Stage::ZETA;
-    comm->forward_comm(this);
+    comm->forward_comm(this, 2);
   }
 }
 
@@ -662,10 +667,7 @@ template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int e
   }
 
   // short-range part over the neighbour list; the softening support must be inside the cutoff
-  const double *zeta = zeta_;
-  int ncol;
-  const double *omega =
-      ZETA ? static_cast<const double *>(sph_->extract_peratom("omega_valid", ncol)) : nullptr;
+  const double *zeta_over_omega = zeta_over_omega_;
   const int inum = list->inum;
   const int *ilist = list->ilist;
   const int *numneigh = list->numneigh;
@@ -683,7 +685,7 @@ template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int e
                  "pair_style sph/astro/gravity: atom {} has softening support {} x h = {} beyond "
                  "the cutoff {} on step {}; the short-range part must cover it (larger cutoff)",
                  atom->tag[i], R, R * hi, cut_global_, update->ntimestep);
-    const double zoi = ZETA ? zeta[i] / omega[i] : 0.0;
+    const double zoi = ZETA ? zeta_over_omega[i] : 0.0;
     double fxi = 0.0, fyi = 0.0, fzi = 0.0;
     const int *jlist = firstneigh[i];
     const int jnum = numneigh[i];
@@ -696,7 +698,7 @@ template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int e
       const double mj = rmass ? rmass[j] : mass[type[j]];
       const double hj = (hstate && hstate[j] > 0.0) ? hstate[j] : hfix;
       double e, D;
-      pair_term(rsq, hi, hj, zoi, ZETA ? zeta[j] / omega[j] : 0.0, e, D);
+      pair_term(rsq, hi, hj, zoi, ZETA ? zeta_over_omega[j] : 0.0, e, D);
       const double mm = G * mi * mj;
       const double fpair = -mm * D;
       fxi += delx * fpair;
@@ -721,15 +723,29 @@ template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int e
 int PairSPHAstroGravity::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/,
                                            int * /*pbc*/)
 {
-  const double *v = comm_stage_ == Stage::ZETA ? zeta_ : state_h();
-  for (int k = 0; k < n; k++) buf[k] = v[list[k]];
+  if (comm_stage_ == Stage::ZETA) {
+    for (int k = 0; k < n; k++) {
+      buf[2 * k] = zeta_[list[k]];
+      buf[2 * k + 1] = zeta_over_omega_[list[k]];
+    }
+    return 2 * n;
+  }
+  const double *h = state_h();
+  for (int k = 0; k < n; k++) buf[k] = h[list[k]];
   return n;
 }
 
 void PairSPHAstroGravity::unpack_forward_comm(int n, int first, double *buf)
 {
-  double *v = comm_stage_ == Stage::ZETA ? zeta_ : state_h();
-  for (int k = 0; k < n; k++) v[first + k] = buf[k];
+  if (comm_stage_ == Stage::ZETA) {
+    for (int k = 0; k < n; k++) {
+      zeta_[first + k] = buf[2 * k];
+      zeta_over_omega_[first + k] = buf[2 * k + 1];
+    }
+    return;
+  }
+  double *h = state_h();
+  for (int k = 0; k < n; k++) h[first + k] = buf[k];
 }
 
 // reverse communication: the ghosts' partial sums of zeta
@@ -759,7 +775,8 @@ double PairSPHAstroGravity::memory_usage()
       (all_.capacity() + zo_all_.capacity() + zeta_radii_.capacity()) * sizeof(double) +
       zeta_points_.capacity() * sizeof(double *) +
       (zeta_index_.capacity() + zeta_found_.capacity()) * sizeof(int) + active_all_.capacity();
-  return nmax_ * sizeof(double) + gathered + zeta_tree_->memory_usage() + Pair::memory_usage();
+  return 2.0 * nmax_ * sizeof(double) + gathered + zeta_tree_->memory_usage() +
+      Pair::memory_usage();
 }
 
 /* ----------------------------------------------------------------------

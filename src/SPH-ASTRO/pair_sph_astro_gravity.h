@@ -87,6 +87,7 @@ class PairSPHAstroGravity : public Pair {
   bool zeta_active_;
   class PairSPHAstro *sph_;
   double *zeta_;
+  double *zeta_over_omega_;    // kspace split: zeta_i / Omega_i of owned + ghost atoms
   int nmax_;
   enum class Stage { H, ZETA };
   Stage comm_stage_;

@@ -9,6 +9,11 @@
 // ncol columns). Forward: owned -> ghost copies; reverse: the ghosts' parts are summed into
 // the owners (or the larger value kept: max). Null arrays are left out, so a stage names every
 // array it may send and the scene's options decide which exist.
+// A sparse stage sends only the atoms marked in chosen (per owned and ghost atom): a message is
+// the count of its atoms, then each atom's position k in LAMMPS' list or range and its values;
+// a message over no atoms is empty (comm_style tiled sends what pack returns). The marks must
+// hold on every rank for the atoms whose values it needs and their sources (the owners, and the
+// ghosts that a later swap passes on).
 
 #ifndef LMP_SPH_ASTRO_COMM_TABLE_H
 #define LMP_SPH_ASTRO_COMM_TABLE_H
@@ -33,8 +38,9 @@ class CommTable {
 
   // the fields of the next stage; returns the values per atom it sends, or -1 for more than
   // MAX_FIELDS arrays
-  int set(std::initializer_list<Field> fields)
+  int set(std::initializer_list<Field> fields, const char *chosen = nullptr)
   {
+    chosen_ = chosen;
     n_ = 0;
     size_ = 0;
     for (const Field &field : fields)
@@ -52,6 +58,7 @@ class CommTable {
   int pack(int n, const int *list, double *buf, const double *dv = nullptr,
            const int *mask = nullptr, int groupbit = 0) const
   {
+    if (chosen_) return pack_chosen(n, list, buf, dv, mask, groupbit);
     int m = 0;
     for (int c = 0; c < n_; c++) {
       const Field &f = fields_[c];
@@ -70,6 +77,7 @@ class CommTable {
   }
   int pack_range(int first, int n, double *buf) const
   {
+    if (chosen_) return pack_range_chosen(first, n, buf);
     int m = 0;
     for (int c = 0; c < n_; c++) {
       const Field &f = fields_[c];
@@ -83,6 +91,22 @@ class CommTable {
   }
   void unpack_range(int first, int n, const double *buf) const
   {
+    if (chosen_) {
+      if (n == 0) return;
+      const int count = static_cast<int>(buf[0]);
+      const double *in = buf + 1;
+      for (int e = 0; e < count; e++) {
+        const int i = first + static_cast<int>(*in++);
+        for (int c = 0; c < n_; c++) {
+          const Field &f = fields_[c];
+          if (f.scalar)
+            f.scalar[i] = *in++;
+          else
+            for (int d = 0; d < f.ncol; d++) f.vector[i][d] = *in++;
+        }
+      }
+      return;
+    }
     int m = 0;
     for (int c = 0; c < n_; c++) {
       const Field &f = fields_[c];
@@ -95,6 +119,19 @@ class CommTable {
   }
   void accumulate(int n, const int *list, const double *buf) const
   {
+    if (chosen_) {
+      if (n == 0) return;
+      const int count = static_cast<int>(buf[0]);
+      const double *in = buf + 1;
+      for (int e = 0; e < count; e++) {
+        const int i = list[static_cast<int>(*in++)];
+        for (int c = 0; c < n_; c++) {
+          add(fields_[c], i, in);
+          in += fields_[c].ncol;
+        }
+      }
+      return;
+    }
     int m = 0;
     for (int c = 0; c < n_; c++) {
       const Field &f = fields_[c];
@@ -114,6 +151,62 @@ class CommTable {
  private:
   Field fields_[MAX_FIELDS];
   int n_ = 0, size_ = 0;
+  const char *chosen_ = nullptr;    // a sparse stage: the atoms it sends
+
+  static void add(const Field &f, int i, const double *in)
+  {
+    if (f.scalar && f.max) {
+      if (in[0] > f.scalar[i]) f.scalar[i] = in[0];
+    } else if (f.scalar)
+      f.scalar[i] += in[0];
+    else
+      for (int d = 0; d < f.ncol; d++) f.vector[i][d] += in[d];
+  }
+  int pack_chosen(int n, const int *list, double *buf, const double *dv, const int *mask,
+                  int groupbit) const
+  {
+    if (n == 0) return 0;
+    double *out = buf + 1;
+    int count = 0;
+    for (int k = 0; k < n; k++) {
+      const int i = list[k];
+      if (!chosen_[i]) continue;
+      count++;
+      *out++ = k;
+      const bool shift = dv && (mask[i] & groupbit) != 0;
+      for (int c = 0; c < n_; c++) {
+        const Field &f = fields_[c];
+        if (f.scalar)
+          *out++ = f.scalar[i];
+        else
+          for (int d = 0; d < f.ncol; d++)
+            *out++ = f.vector[i][d] + (shift && f.velocity ? dv[d] : 0.0);
+      }
+    }
+    buf[0] = count;
+    return static_cast<int>(out - buf);
+  }
+  int pack_range_chosen(int first, int n, double *buf) const
+  {
+    if (n == 0) return 0;
+    double *out = buf + 1;
+    int count = 0;
+    for (int k = 0; k < n; k++) {
+      const int i = first + k;
+      if (!chosen_[i]) continue;
+      count++;
+      *out++ = k;
+      for (int c = 0; c < n_; c++) {
+        const Field &f = fields_[c];
+        if (f.scalar)
+          *out++ = f.scalar[i];
+        else
+          for (int d = 0; d < f.ncol; d++) *out++ = f.vector[i][d];
+      }
+    }
+    buf[0] = count;
+    return static_cast<int>(out - buf);
+  }
 };
 
 }    // namespace SPHAstro

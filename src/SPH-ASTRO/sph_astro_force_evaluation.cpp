@@ -32,11 +32,11 @@ EvaluationResult ForceEvaluation::run(NeighbourLists &lists, const GradhSettings
     iteration.full.inum = static_cast<int>(active_owned_.size());
     iteration.full.ilist = active_owned_.data();
   }
-  if (!scheme_.gradh()) ctx_.half = evaluated_pairs(lists);
+  if (!scheme_.gradh()) select_pairs(lists);
   density(iteration, hstats, initialise_density, result);
   if (scheme_.gradh()) {    // h is that of the iteration now, on the ghosts too
     exchange_.forward({{a_.h, nullptr, 1, false}});
-    ctx_.half = evaluated_pairs(lists);
+    select_pairs(lists);
   }
   if (individual() && scheme_.gradh()) restore(f.omega, a_.steps.omega);
   equation_of_state(initialise_entropy);
@@ -66,6 +66,29 @@ NeighView ForceEvaluation::evaluated_pairs(NeighbourLists &lists)
 {
   if (!individual()) return lists.half(a_.h);
   return lists.due(a_.h, a_.steps.active);
+}
+
+// With individual steps the force pass reads, and sums into, only the ghosts in the pairs it
+// evaluates: the state goes to those ghosts and the sums come back from them only
+void ForceEvaluation::select_pairs(NeighbourLists &lists)
+{
+  ctx_.half = evaluated_pairs(lists);
+  chosen_ghosts_ = nullptr;
+  if (!individual()) return;
+  const int nlocal = ctx_.p.nlocal;
+  const std::size_t nall = ctx_.p.nall;
+  if (in_pairs_.size() < nall) in_pairs_.resize(nall);
+  std::fill(in_pairs_.begin(), in_pairs_.begin() + nall, 0);
+  const NeighView &pairs = ctx_.half;
+  for (int ii = 0; ii < pairs.inum; ii++) {
+    const int i = pairs.ilist[ii];
+    const int *row = pairs.firstneigh[i];
+    const int n = pairs.numneigh[i];
+    for (int e = 0; e < n; e++)
+      if (row[e] >= nlocal) in_pairs_[row[e]] = 1;
+  }
+  exchange_.gather_marks(in_pairs_.data());
+  chosen_ghosts_ = in_pairs_.data();
 }
 
 void ForceEvaluation::restore(double *field, const double *kept)
@@ -153,16 +176,21 @@ void ForceEvaluation::forward_state()
   const bool gradh = scheme_.gradh();
   const bool ghost_u =
       o_.eos.uses_energy() && (o_.conductivity > 0.0 || o_.conduction > 0.0) && !o_.pressure_energy;
-  exchange_.forward({{ctx_.rho, nullptr, 1, false},
-                     {f.pressure, nullptr, 1, false},
-                     {f.soundspeed, nullptr, 1, false},
-                     {nullptr, vest_sent_ ? nullptr : ctx_.vest, 3, false, true},
-                     {gradh ? f.omega : nullptr, nullptr, 1, false},
-                     {gradh && o_.pressure_energy ? f.pe_gradh : nullptr, nullptr, 1, false},
-                     {ctx_.alpha, nullptr, 1, false},
-                     {ghost_u ? ctx_.uest : nullptr, nullptr, 1, false},
-                     {o_.balsara ? f.balsara : nullptr, nullptr, 1, false},
-                     {nullptr, o_.reconstruction() ? f.vgrad : nullptr, VGRAD_DATA, false}});
+  const std::initializer_list<CommField> state = {
+      {ctx_.rho, nullptr, 1, false},
+      {f.pressure, nullptr, 1, false},
+      {f.soundspeed, nullptr, 1, false},
+      {nullptr, vest_sent_ ? nullptr : ctx_.vest, 3, false, true},
+      {gradh ? f.omega : nullptr, nullptr, 1, false},
+      {gradh && o_.pressure_energy ? f.pe_gradh : nullptr, nullptr, 1, false},
+      {ctx_.alpha, nullptr, 1, false},
+      {ghost_u ? ctx_.uest : nullptr, nullptr, 1, false},
+      {o_.balsara ? f.balsara : nullptr, nullptr, 1, false},
+      {nullptr, o_.reconstruction() ? f.vgrad : nullptr, VGRAD_DATA, false}};
+  if (chosen_ghosts_)
+    exchange_.forward_chosen(state, chosen_ghosts_);
+  else
+    exchange_.forward(state);
 }
 
 void ForceEvaluation::force()
@@ -179,11 +207,17 @@ void ForceEvaluation::force()
 
   const ForceSettings s = force_settings(o_, gradh, ctx_.alpha != nullptr);
   force_pass(ctx_, s, gradh || o_.symmetrise_kernel, o_.symmetrise_kernel);
-  if (ctx_.newton)
-    exchange_.reverse({{s.energy ? ctx_.dudt : nullptr, nullptr, 1, false},
-                       {f.vdotgradw, nullptr, 1, false},
-                       {s.track_signal ? f.vsigmax : nullptr, nullptr, 1, true},
-                       {s.alpha_u > 0.0 ? f.condrate : nullptr, nullptr, 1, false}});
+  if (ctx_.newton) {
+    const std::initializer_list<CommField> sums = {
+        {s.energy ? ctx_.dudt : nullptr, nullptr, 1, false},
+        {f.vdotgradw, nullptr, 1, false},
+        {s.track_signal ? f.vsigmax : nullptr, nullptr, 1, true},
+        {s.alpha_u > 0.0 ? f.condrate : nullptr, nullptr, 1, false}};
+    if (chosen_ghosts_)
+      exchange_.reverse_chosen(sums, chosen_ghosts_);
+    else
+      exchange_.reverse(sums);
+  }
   finish_force(ctx_, s);
   if (s.energy)
     thermal_rates(ctx_, o_.eos, gradh && !o_.pressure_energy, o_.pressure_geometric,

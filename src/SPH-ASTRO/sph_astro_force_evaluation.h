@@ -35,6 +35,12 @@ class Exchange {
   // owned -> ghost copies of these arrays; the ghosts' parts summed into their owners
   virtual void forward(std::initializer_list<CommField> fields) = 0;
   virtual void reverse(std::initializer_list<CommField> fields) = 0;
+  // the same for the atoms marked in chosen only (sph_astro_comm_table.h)
+  virtual void forward_chosen(std::initializer_list<CommField> fields, const char *chosen) = 0;
+  virtual void reverse_chosen(std::initializer_list<CommField> fields, const char *chosen) = 0;
+  // marks (per owned and ghost atom) of the ghosts to their owners, and to the ghosts that a
+  // later swap passes on: then a chosen stage reaches every marked ghost
+  virtual void gather_marks(char *marks) = 0;
 
  protected:
   ~Exchange() = default;
@@ -88,10 +94,15 @@ class ForceEvaluation {
   std::vector<int> active_owned_;
   std::vector<double> rho_kept_;
   bool vest_sent_ = false;    // the ghosts have this evaluation's v_est
+  // individual steps: the ghosts in this evaluation's pairs, and their owners (chosen_ghosts_)
+  std::vector<char> in_pairs_;
+  const char *chosen_ghosts_ = nullptr;
 
   bool individual() const { return a_.steps.active != nullptr; }
   // individual steps: the half list's pairs with an active atom
   NeighView evaluated_pairs(NeighbourLists &lists);
+  // ctx_.half = evaluated_pairs(); with individual steps the ghosts in them are marked
+  void select_pairs(NeighbourLists &lists);
   // individual steps: inactive owned atoms take back their kept values of field (restore), or
   // active ones keep this evaluation's (keep)
   void restore(double *field, const double *kept);
