@@ -69,6 +69,8 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
 
   time_integrate = 1;
   restart_global = 1;
+  force_reneighbor = 1;    // an atom that left a shrink-wrapped box (post_integrate)
+  next_reneighbor = -1;
   create_attribute = 1;    // set_arrays() for created particles
   scalar_flag = 1;         // current dt
   vector_flag = 1;         // [dt_courant, dt_force, dt_energy, dt_conduction]
@@ -221,7 +223,7 @@ void *FixSPHAstro::extract(const char *name, int &dim)
 
 int FixSPHAstro::setmask()
 {
-  int mask = INITIAL_INTEGRATE | FINAL_INTEGRATE | END_OF_STEP;
+  int mask = INITIAL_INTEGRATE | POST_INTEGRATE | FINAL_INTEGRATE | END_OF_STEP;
   if (xsph_eps_ > 0.0) mask |= POST_FORCE;    // XSPH correction after the forces
   if (steps_) mask |= PRE_FORCE;              // the active particles of a step
   return mask;
@@ -245,6 +247,9 @@ bool FixSPHAstro::pair_has_continuity() const
 
 void FixSPHAstro::init()
 {
+  // a grid long-range solver (msm/sph/astro/gravity) in a shrink-wrapped box maps atoms only
+  // inside the box, which LAMMPS sets at each reneighbouring
+  box_check_ = domain->nonperiodic == 2 && force->kspace != nullptr;
   pair_ = dynamic_cast<PairSPHAstro *>(force->pair_match("^sph/astro$", 0, 0));
   if (!pair_) error->all(FLERR, "fix sph/astro requires pair_style sph/astro");
   if (force->ftm2v != 1.0 || force->mvv2e != 1.0)
@@ -362,6 +367,30 @@ void FixSPHAstro::setup_pre_force(int /*vflag*/)
 void FixSPHAstro::pre_force(int /*vflag*/)
 {
   if (steps_) steps_->pre_force(pair_);
+}
+
+// LAMMPS shrink-wraps the box at a reneighbouring; an atom that drifts out of it before the
+// next one (an expanding gas moves up to half the skin) lies beyond the grid of MSM, which
+// stops with "Out of range atoms". Such an atom makes this step a reneighbouring one.
+void FixSPHAstro::post_integrate()
+{
+  if (!box_check_) return;
+  double **x = atom->x;
+  const int nlocal = atom->nlocal;
+  int outside = 0;
+  for (int d = 0; d < 3 && !outside; d++) {
+    const bool wrap_lo = domain->boundary[d][0] >= 2, wrap_hi = domain->boundary[d][1] >= 2;
+    if (!wrap_lo && !wrap_hi) continue;
+    const double lo = domain->boxlo[d], hi = domain->boxhi[d];
+    for (int i = 0; i < nlocal; i++)
+      if ((wrap_lo && x[i][d] < lo) || (wrap_hi && x[i][d] >= hi)) {
+        outside = 1;
+        break;
+      }
+  }
+  int any = 0;
+  MPI_Allreduce(&outside, &any, 1, MPI_INT, MPI_MAX, world);
+  if (any) next_reneighbor = update->ntimestep;
 }
 
 void FixSPHAstro::initial_integrate(int /*vflag*/)

@@ -42,6 +42,7 @@ class FixSPHAstro : public Fix {
   void setup_pre_force(int) override;
   void setup(int) override;
   void initial_integrate(int) override;
+  void post_integrate() override;
   void pre_force(int) override;
   void final_integrate() override;
   void post_force(int) override;
@@ -93,6 +94,7 @@ class FixSPHAstro : public Fix {
   double tend_ = -1.0;    // < 0: no end time
   bool adaptive_ = true;
   bool stopped_at_tend_ = false;
+  bool box_check_ = false;    // shrink-wrapped box with a kspace solver (post_integrate)
 
   SPHAstro::StateIndex *state_;
   class PairSPHAstro *pair_ = nullptr;
