@@ -43,6 +43,7 @@
 #include "sph_astro_options.h"
 #include "sph_astro_passes.h"
 #include "sph_astro_sentinel.h"
+#include "sph_astro_shrink_wrap.h"
 #include "sph_astro_state.h"
 #include "sph_astro_timestep.h"
 #include "timer.h"
@@ -369,28 +370,10 @@ void FixSPHAstro::pre_force(int /*vflag*/)
   if (steps_) steps_->pre_force(pair_);
 }
 
-// LAMMPS shrink-wraps the box at a reneighbouring; an atom that drifts out of it before the
-// next one (an expanding gas moves up to half the skin) lies beyond the grid of MSM, which
-// stops with "Out of range atoms". Such an atom makes this step a reneighbouring one.
+// an atom outside a shrink-wrapped box with a grid solver (sph_astro_shrink_wrap.h)
 void FixSPHAstro::post_integrate()
 {
-  if (!box_check_) return;
-  double **x = atom->x;
-  const int nlocal = atom->nlocal;
-  int outside = 0;
-  for (int d = 0; d < 3 && !outside; d++) {
-    const bool wrap_lo = domain->boundary[d][0] >= 2, wrap_hi = domain->boundary[d][1] >= 2;
-    if (!wrap_lo && !wrap_hi) continue;
-    const double lo = domain->boxlo[d], hi = domain->boxhi[d];
-    for (int i = 0; i < nlocal; i++)
-      if ((wrap_lo && x[i][d] < lo) || (wrap_hi && x[i][d] >= hi)) {
-        outside = 1;
-        break;
-      }
-  }
-  int any = 0;
-  MPI_Allreduce(&outside, &any, 1, MPI_INT, MPI_MAX, world);
-  if (any) next_reneighbor = update->ntimestep;
+  if (box_check_ && atom_left_shrink_wrapped_box(lmp)) next_reneighbor = update->ntimestep;
 }
 
 void FixSPHAstro::initial_integrate(int /*vflag*/)

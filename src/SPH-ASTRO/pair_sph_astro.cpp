@@ -25,6 +25,7 @@
 #include "sph_astro_pair_coeff.h"
 #include "sph_astro_passes.h"
 #include "sph_astro_scheme.h"
+#include "sph_astro_sparse_message.h"
 #include "sph_astro_state.h"
 #include "sph_astro_timestep.h"
 
@@ -455,12 +456,13 @@ void PairSPHAstro::unpack_forward_comm(int n, int first, double *buf)
 int PairSPHAstro::pack_reverse_comm(int n, int first, double *buf)
 {
   if (!marks_) return comm_table_->pack_range(first, n, buf);
-  if (n == 0) return 0;    // (comm_style tiled sends what pack returns)
-  int count = 0;
-  for (int k = 0; k < n; k++)
-    if (marks_[first + k]) buf[1 + count++] = k;
-  buf[0] = count;
-  return 1 + count;
+  return SPHAstro::pack_sparse(
+      n, 0, buf,
+      [&](int k) {
+        return marks_[first + k] != 0;
+      },
+      [](int, double *) {
+      });
 }
 
 void PairSPHAstro::unpack_reverse_comm(int n, int *list, double *buf)
@@ -469,9 +471,9 @@ void PairSPHAstro::unpack_reverse_comm(int n, int *list, double *buf)
     comm_table_->accumulate(n, list, buf);
     return;
   }
-  if (n == 0) return;
-  const int count = static_cast<int>(buf[0]);
-  for (int e = 0; e < count; e++) marks_[list[static_cast<int>(buf[1 + e])]] = 1;
+  SPHAstro::unpack_sparse(n, 0, buf, [&](int k, const double *) {
+    marks_[list[k]] = 1;
+  });
 }
 
 /* ---------------------------------------------------------------------- */

@@ -18,6 +18,8 @@
 #ifndef LMP_SPH_ASTRO_COMM_TABLE_H
 #define LMP_SPH_ASTRO_COMM_TABLE_H
 
+#include "sph_astro_sparse_message.h"
+
 #include <initializer_list>
 
 namespace SPHAstro {
@@ -92,19 +94,9 @@ class CommTable {
   void unpack_range(int first, int n, const double *buf) const
   {
     if (chosen_) {
-      if (n == 0) return;
-      const int count = static_cast<int>(buf[0]);
-      const double *in = buf + 1;
-      for (int e = 0; e < count; e++) {
-        const int i = first + static_cast<int>(*in++);
-        for (int c = 0; c < n_; c++) {
-          const Field &f = fields_[c];
-          if (f.scalar)
-            f.scalar[i] = *in++;
-          else
-            for (int d = 0; d < f.ncol; d++) f.vector[i][d] = *in++;
-        }
-      }
+      unpack_sparse(n, size_, buf, [&](int k, const double *in) {
+        get(first + k, in);
+      });
       return;
     }
     int m = 0;
@@ -120,16 +112,13 @@ class CommTable {
   void accumulate(int n, const int *list, const double *buf) const
   {
     if (chosen_) {
-      if (n == 0) return;
-      const int count = static_cast<int>(buf[0]);
-      const double *in = buf + 1;
-      for (int e = 0; e < count; e++) {
-        const int i = list[static_cast<int>(*in++)];
+      unpack_sparse(n, size_, buf, [&](int k, const double *in) {
+        const int i = list[k];
         for (int c = 0; c < n_; c++) {
           add(fields_[c], i, in);
           in += fields_[c].ncol;
         }
-      }
+      });
       return;
     }
     int m = 0;
@@ -162,50 +151,50 @@ class CommTable {
     else
       for (int d = 0; d < f.ncol; d++) f.vector[i][d] += in[d];
   }
+  // one atom's values of the stage, one field after the other (put: with the velocity shift)
+  void put(int i, double *out, const double *dv) const
+  {
+    for (int c = 0; c < n_; c++) {
+      const Field &f = fields_[c];
+      if (f.scalar)
+        *out++ = f.scalar[i];
+      else
+        for (int d = 0; d < f.ncol; d++) *out++ = f.vector[i][d] + (dv && f.velocity ? dv[d] : 0.0);
+    }
+  }
+  void get(int i, const double *in) const
+  {
+    for (int c = 0; c < n_; c++) {
+      const Field &f = fields_[c];
+      if (f.scalar)
+        f.scalar[i] = *in++;
+      else
+        for (int d = 0; d < f.ncol; d++) f.vector[i][d] = *in++;
+    }
+  }
   int pack_chosen(int n, const int *list, double *buf, const double *dv, const int *mask,
                   int groupbit) const
   {
-    if (n == 0) return 0;
-    double *out = buf + 1;
-    int count = 0;
-    for (int k = 0; k < n; k++) {
-      const int i = list[k];
-      if (!chosen_[i]) continue;
-      count++;
-      *out++ = k;
-      const bool shift = dv && (mask[i] & groupbit) != 0;
-      for (int c = 0; c < n_; c++) {
-        const Field &f = fields_[c];
-        if (f.scalar)
-          *out++ = f.scalar[i];
-        else
-          for (int d = 0; d < f.ncol; d++)
-            *out++ = f.vector[i][d] + (shift && f.velocity ? dv[d] : 0.0);
-      }
-    }
-    buf[0] = count;
-    return static_cast<int>(out - buf);
+    return pack_sparse(
+        n, size_, buf,
+        [&](int k) {
+          return chosen_[list[k]] != 0;
+        },
+        [&](int k, double *out) {
+          const int i = list[k];
+          put(i, out, dv && (mask[i] & groupbit) ? dv : nullptr);
+        });
   }
   int pack_range_chosen(int first, int n, double *buf) const
   {
-    if (n == 0) return 0;
-    double *out = buf + 1;
-    int count = 0;
-    for (int k = 0; k < n; k++) {
-      const int i = first + k;
-      if (!chosen_[i]) continue;
-      count++;
-      *out++ = k;
-      for (int c = 0; c < n_; c++) {
-        const Field &f = fields_[c];
-        if (f.scalar)
-          *out++ = f.scalar[i];
-        else
-          for (int d = 0; d < f.ncol; d++) *out++ = f.vector[i][d];
-      }
-    }
-    buf[0] = count;
-    return static_cast<int>(out - buf);
+    return pack_sparse(
+        n, size_, buf,
+        [&](int k) {
+          return chosen_[first + k] != 0;
+        },
+        [&](int k, double *out) {
+          put(first + k, out, nullptr);
+        });
   }
 };
 

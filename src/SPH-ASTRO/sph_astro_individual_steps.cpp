@@ -9,6 +9,7 @@
 
 #include "pair_sph_astro.h"
 #include "sph_astro_options.h"
+#include "sph_astro_sparse_message.h"
 #include "sph_astro_time_bins.h"
 
 #include "atom.h"
@@ -32,33 +33,6 @@ namespace {
   constexpr int NTIMES = 4;        // per-atom times of pair_impulses(): begin, end, woken, end_then
   constexpr int SUM_STRIDE = 6;    // sums_ per atom: impulses, forces
   const double NO_PAIR_KICKS[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};    // kicks particle
-
-  // A sparse message over n atoms: the count of the chosen ones, then each one's position k
-  // in the message and its width values. Nothing at all for n = 0: comm_style tiled sends what
-  // pack returns, and its receiver expects n x size.
-  // pack: chosen(k), values(k, out) writes width values
-  template <class CHOSEN, class VALUES>
-  int pack_sparse(int n, int width, double *buf, CHOSEN &&chosen, VALUES &&values)
-  {
-    if (n == 0) return 0;
-    double *out = buf + 1;
-    for (int k = 0; k < n; k++) {
-      if (!chosen(k)) continue;
-      *out++ = k;
-      values(k, out);
-      out += width;
-    }
-    buf[0] = static_cast<double>((out - buf - 1) / (width + 1));
-    return static_cast<int>(out - buf);
-  }
-  // unpack: take(k, in) reads width values
-  template <class TAKE> void unpack_sparse(int n, int width, const double *buf, TAKE &&take)
-  {
-    if (n == 0) return;
-    const int count = static_cast<int>(buf[0]);
-    const double *in = buf + 1;
-    for (int e = 0; e < count; e++, in += width + 1) take(static_cast<int>(in[0]), in + 1);
-  }
 
 }    // namespace
 
