@@ -145,6 +145,72 @@ TEST(IndividualSteps, PairKicksConserveMomentumToRoundOff)
   EXPECT_GT(drift[0], 1e3 * drift[1]);
 }
 
+// inside its step a particle follows x_b + v_b tau + a tau^2 / 2 (the drift takes the
+// velocity predicted at the middle of each LAMMPS step), so that active particles see their
+// sleeping neighbours where they are at that time; the step ends where kick-drift-kick puts
+// it, x_b + (v_b + a dt / 2) dt. Checked at every LAMMPS step inside each observed step:
+// x = x_b + (x_e - x_b) tau / dt + a tau (tau - dt) / 2, a = f/m (an inactive particle's f is
+// that of its last evaluation)
+TEST(IndividualSteps, SleepingParticlesDriftOnTheirParabola)
+{
+  auto lmp = open_lammps();
+  hot_spot(lmp, 5, "sph/astro courant 0.3 steps individual tend 0.03 kicks particle");
+  commands(lmp, {"thermo 1000", "run 0"});
+  struct Record {
+    double t, begin, x[3], a[3];
+  };
+  std::map<int, std::vector<Record>> history;
+  const double mass = lmp->atom->mass[1];
+  for (int step = 0; step < 400; step++) {
+    auto *u = lmp->update;
+    const double t = u->atime + (u->ntimestep - u->atimestep) * u->dt;
+    if (t >= 0.03 - 1e-12) break;
+    commands(lmp, {"run 1 post no"});
+    const double now = u->atime + (u->ntimestep - u->atimestep) * u->dt;
+    std::map<int, double> x[3], f[3];
+    for (int d = 0; d < 3; d++) {
+      x[d] = per_atom(lmp, "x", d);
+      f[d] = per_atom(lmp, "f", d);
+    }
+    const auto begin = per_atom(lmp, "step_begin");
+    for (const auto &[id, b] : begin) {
+      Record r{now, b, {x[0][id], x[1][id], x[2][id]}, {}};
+      for (int d = 0; d < 3; d++) r.a[d] = f[d][id] / mass;
+      history[id].push_back(r);
+    }
+  }
+  // a step: the records from the one where begin changed to the next change
+  int checked = 0;
+  double worst = 0.0, curvature = 0.0;
+  for (const auto &[id, rec] : history) {
+    for (std::size_t s = 1; s < rec.size(); s++) {
+      if (rec[s].begin == rec[s - 1].begin) continue;
+      std::size_t e = s + 1;
+      while (e < rec.size() && rec[e].begin == rec[s].begin) e++;
+      if (e >= rec.size()) break;    // the step did not end in the run
+      const Record &rb = rec[s], &re = rec[e];
+      const double dt = re.t - rb.t;
+      for (std::size_t k = s + 1; k < e; k++) {
+        const double tau = rec[k].t - rb.t;
+        for (int d = 0; d < 3; d++) {
+          const double bend = 0.5 * rec[k].a[d] * tau * (tau - dt);
+          const double expected = rb.x[d] + (re.x[d] - rb.x[d]) * tau / dt + bend;
+          worst = std::max(worst, std::fabs(rec[k].x[d] - expected));
+          curvature = std::max(curvature, std::fabs(bend));
+        }
+        checked++;
+      }
+      s = e - 1;
+    }
+  }
+  std::printf("%d positions inside steps: largest deviation %g from the parabola, largest "
+              "bend %g\n",
+              checked, worst, curvature);
+  EXPECT_GT(checked, 100);
+  EXPECT_GT(curvature, 1e-8);    // the parabola differs from the chord
+  EXPECT_LT(worst, 1e-3 * curvature);
+}
+
 // without the limiter a blast runs into sleeping gas: its energy goes wrong
 TEST(IndividualSteps, WithoutTheLimiterABlastIntoSleepingGasGoesWrong)
 {

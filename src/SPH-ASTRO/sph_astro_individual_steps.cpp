@@ -204,15 +204,21 @@ void IndividualSteps::kick_drift(double h_cap, bool evolve_u)
       for (int d = 0; d < 3; d++) v[i][d] += half * accel_other[i][d];
       if (evolve_u) u[i] += half * dudt[i];
     }
-    for (int d = 0; d < 3; d++) x[i][d] += dt * v[i][d];
-    // predicted to the end of this LAMMPS step, from the middle of the particle's step; with
-    // kicks pair, the pairs on a shorter interval than that step have kicked it further
-    // (their lead is the part of the prediction they have given)
-    const double tau = (ti_next_ - 0.5 * (begin[i] + end[i])) * t;
+    // the velocity predicted from the middle of the particle's step; with kicks pair, the
+    // pairs on a shorter interval than that step have kicked it further (their lead is the
+    // part of the prediction they have given). The drift takes it at the middle of this
+    // LAMMPS step: x = x_b + v_b tau + a tau^2 / 2 inside the particle's step, which ends
+    // where the drift with v_b + a dt_i / 2 does, and which a wake does not change
+    const double mid = 0.5 * (begin[i] + end[i]);
+    const double tau_drift = (0.5 * (ti_now_ + ti_next_) - mid) * t;
+    const double tau = (ti_next_ - mid) * t;
+    double lead_i[3] = {0.0, 0.0, 0.0};
     if (pair_kicks_)
-      for (int d = 0; d < 3; d++) vest[i][d] = v[i][d] + tau * accel[i][d] + lead[i][d];
-    else
-      for (int d = 0; d < 3; d++) vest[i][d] = v[i][d] + tau * accel[i][d];
+      for (int d = 0; d < 3; d++) lead_i[d] = lead[i][d];
+    for (int d = 0; d < 3; d++) {
+      x[i][d] += dt * (v[i][d] + tau_drift * accel[i][d] + lead_i[d]);
+      vest[i][d] = v[i][d] + tau * accel[i][d] + lead_i[d];
+    }
     uest[i] = evolve_u ? u[i] + tau * dudt[i] : u[i];
     // rho and h follow the last div v (active particles: the h iteration's first guess)
     if (h_cap > 0.0) h[i] = std::min(h[i] * std::exp(dt_over_d * divv[i]), h_cap);
@@ -293,11 +299,6 @@ void IndividualSteps::end_of_step(const std::vector<double> &wanted, PairSPHAstr
   // the pairs evaluated now open their next interval (the impulses only: an active particle's
   // sum_j F_ij is m (accel - accel_other) since final_kick)
   pair_impulses(pair, false, false);
-  double **x = atom->x;
-  for (std::size_t k = 0; k < woken_list_.size(); k++)
-    for (int d = 0; d < 3; d++) x[woken_list_[k]][d] += woken_dx_[3 * k + d];
-  woken_list_.clear();
-  woken_dx_.clear();
   const int nlocal = atom->nlocal;
   const int *mask = atom->mask;
   double **kick = atom->darray[idx_.kick];
@@ -406,7 +407,6 @@ void IndividualSteps::limit(PairSPHAstro *pair)
   double **v = atom->v;
   double *u = atom->dvector[state_.u];
   double *bin = atom->dvector[idx_.bin];
-  const double *begin = atom->dvector[idx_.begin];
   double *end = atom->dvector[idx_.end];
   double **accel_other = atom->darray[idx_.accel_other];
   const double *const *accel = atom->darray[idx_.accel];
@@ -423,17 +423,12 @@ void IndividualSteps::limit(PairSPHAstro *pair)
     // wake a sleeping particle: its step ends at the next point of the allowed grid
     const double new_end = TimeBins::wake_end(ti_now_, static_cast<int>(required_[i]));
     if (!(new_end < end[i])) continue;
-    // its first half kick (forces not of pairs) becomes that of the shortened step, and so
-    // does its drift since; its pairs with sleeping partners close with the rest of their
-    // shortened interval (pair_impulses; those with the waking ones open theirs now)
+    // its first half kick (forces not of pairs) becomes that of the shortened step (its drift,
+    // x_b + v_b tau + a tau^2 / 2, does not depend on the step's length); its pairs with
+    // sleeping partners close with the rest of their shortened interval (pair_impulses; those
+    // with the waking ones open theirs now)
     const double shift = 0.5 * (new_end - end[i]) * t;
-    const double since = (ti_now_ - begin[i]) * t;
-    // (x moves after the opening pair kicks, which take the pair forces' positions)
-    woken_list_.push_back(i);
-    for (int d = 0; d < 3; d++) {
-      v[i][d] += shift * accel_other[i][d];
-      woken_dx_.push_back(shift * since * accel_other[i][d]);
-    }
+    for (int d = 0; d < 3; d++) v[i][d] += shift * accel_other[i][d];
     // its step's middle moves by shift, its pairs' do not
     if (pair_kicks_)
       for (int d = 0; d < 3; d++) lead[i][d] += shift * (accel[i][d] - accel_other[i][d]);

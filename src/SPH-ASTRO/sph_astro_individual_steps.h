@@ -11,17 +11,20 @@
 // of a particle step to the next (update->dt varies); the particles whose step ends with it
 // are active, and pair sph/astro evaluates the pairs with an active particle only.
 //   a step begins     v += a_other dt_i/2, u += du/dt dt_i/2   (of its last evaluation)
-//   every LAMMPS step x += v dt (all particles); an inactive particle's rho and h follow its
-//                     last div v: rho *= exp(-div v dt), h *= exp(div v dt / d); every
-//                     particle's v and u are predicted to the end of the LAMMPS step,
-//                     v_est = v + a (t - t_mid,i), u_est = u + du/dt (t - t_mid,i)
+//   every LAMMPS step every particle's v and u are predicted to the end of the LAMMPS step,
+//                     v_est(t) = v + a (t - t_mid,i), u_est = u + du/dt (t - t_mid,i);
+//                     x += v_est(t_c) dt with t_c the LAMMPS step's middle (inside its step
+//                     the particle follows x_b + v_b tau + a tau^2 / 2 and ends it at
+//                     x_b + (v_b + a dt_i / 2) dt_i, as kick-drift-kick does); an inactive
+//                     particle's rho and h follow its last div v: rho *= exp(-div v dt),
+//                     h *= exp(div v dt / d)
 //   a step ends       v += a_other,new dt_i/2, u += du/dt_new dt_i/2; the new bin from the
 //                     timestep criteria (shorter at once, longer one bin at a time where its
 //                     grid passes), and the timestep limiter (Saitoh & Makino 2009, ApJ 697,
 //                     L99): no particle more than 2^levels times its neighbours' step; a
 //                     sleeping neighbour is woken (Durier & Dalla Vecchia 2012, MNRAS 419,
 //                     465): its step ends at the next point of the allowed bin's grid, and its
-//                     first half kick (and the drift since) are corrected to the shortened step
+//                     first half kick is corrected to the shortened step (its parabola is not)
 // kicks particle (default): a_other is the whole acceleration of the particle's evaluation.
 // kicks pair: pair sph/astro's forces are integrated pair by pair, on the shorter step of the
 // pair's two particles (Springel 2010, MNRAS 401, 791, sec. 7, for fluxes between cells): the
@@ -152,8 +155,6 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   LAMMPS_NS::bigint times_opened_ = -1;    // the steps of the last opening and closing whose
   LAMMPS_NS::bigint times_closed_ = -1;    // times the ghosts hold (-1: none)
   int times_nall_ = 0;                     // owned + ghost atoms then
-  std::vector<int> woken_list_;            // particles woken by the limiter, and their x shift
-  std::vector<double> woken_dx_;
   enum class Comm {
     ACTIVE,
     BINS,
