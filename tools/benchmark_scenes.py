@@ -15,9 +15,10 @@ uniform periodic box, fixed h and dt, 40/20/5 steps), ``box1e5i`` (the same box 
 run: the h iteration with grad-h terms, skin 0.5 h), ``sedov16``, ``sedov22``, ``sedov35``
 (examples/sedov to t = 0.1), ``noh24`` (examples/noh to t = 0.6), ``evrard`` (examples/evrard,
 n 16, MSM gravity, to t = 0.8), the same scenes with individual timesteps (``sedov16i``,
-``sedov22i``, ``sedov35i``, ``noh24i``, ``evrardi``: ``-var steps individual``; their updates
-are the particle-updates fix sph/astro counts; the same with pair kicks, ``-var kicks pair``:
-``sedov16ik``, ``sedov22ik``, ``sedov35ik``, ``noh24ik``, ``evrardik``; ``sedov16i2``,
+``sedov22i``, ``sedov35i``, ``noh24i``, ``evrardi``: ``-var steps individual`` with the inputs'
+default pair kicks; their updates are the particle-updates fix sph/astro counts); the same with
+particle kicks, ``-var kicks particle``: ``sedov16ik``, ``sedov22ik``, ``sedov35ik``,
+``noh24ik``, ``evrardik``; ``sedov16i2``,
 ``sedov22i2``, ``sedov35i2`` with ``-var limiter 2``; ``sedov16p``, ``sedov22p``,
 ``sedov35p`` and, with individual steps, ``sedov16ip``, ``sedov22ip``, ``sedov35ip``: the
 Courant signal speed over the neighbours,
@@ -28,7 +29,7 @@ Courant signal speed over the neighbours,
 spline as its repository describes; ``--swift-dir``: a folder with ``swift_sedov.yml`` and
 ``swift_sedov_ic.py ``; 2 threads, ``--hydro --limiter``). SWIFT is never part of this
 repository or of its tests; its rows are skipped when it is absent. ``--individual-var
-kicks=pair`` runs the rows with individual steps with ``-var kicks pair`` as well.
+kicks=particle`` runs the rows with individual steps with ``-var kicks particle`` instead.
 
 Each SPH-ASTRO row runs ``mpirun -np NP /usr/bin/time -f %M lmp ...`` and prints
 
@@ -76,12 +77,12 @@ SCENES = {
     "evrard": ("evrard/in.evrard", {"n": 16, "gravity": "msm", "tend": 0.8,
                                     "thermoevery": 100}),
 }
-# the scenes with individual timesteps (fix sph/astro steps individual): row name + "i"; with
-# pair kicks (kicks pair): + "ik"
+# the scenes with individual timesteps (fix sph/astro steps individual, its default pair kicks):
+# row name + "i"; with particle kicks (kicks particle): + "ik"
 for _name in ("sedov16", "sedov22", "sedov35", "noh24", "evrard"):
     _script, _vars = SCENES[_name]
     SCENES[_name + "i"] = (_script, dict(_vars, steps="individual"))
-    SCENES[_name + "ik"] = (_script, dict(_vars, steps="individual", kicks="pair"))
+    SCENES[_name + "ik"] = (_script, dict(_vars, steps="individual", kicks="particle"))
 # Sedov with individual steps and a limiter of 2 levels (factor 4, SWIFT's): row name + "i2"
 for _name in ("sedov16", "sedov22", "sedov35"):
     _script, _vars = SCENES[_name]
@@ -222,7 +223,7 @@ def main():
                                                          "benchmark_scenes"))
     parser.add_argument("--individual-var", action="append", default=[], metavar="NAME=VALUE",
                         help="-var NAME VALUE for the rows with individual steps (e.g. "
-                             "kicks=pair); repeatable")
+                             "kicks=particle); repeatable")
     args = parser.parse_args()
     individual_vars = []
     for item in args.individual_var:

@@ -42,20 +42,23 @@ SCENES = {
     "sod_fixed_h": ("examples/sod/in.sod", ["-var", "hmode", "fixed", "-var", "hfact", "1.5"]),
     # Sedov blast, 16 384 particles, variable h over a wide range (ghost cutoff widened)
     "sedov16": ("examples/sedov/in.sedov", ["-var", "n", "16"]),
-    # the same with individual timesteps (fix sph/astro steps individual)
-    "sedov16i": ("examples/sedov/in.sedov", ["-var", "n", "16", "-var", "steps", "individual"]),
+    # the same with individual timesteps (fix sph/astro steps individual), particle kicks
+    "sedov16i": ("examples/sedov/in.sedov", ["-var", "n", "16", "-var", "steps", "individual",
+                                             "-var", "kicks", "particle"]),
     # the same with pair kicks (fix sph/astro kicks pair)
     "sedov16ik": ("examples/sedov/in.sedov", ["-var", "n", "16", "-var", "steps", "individual",
                                               "-var", "kicks", "pair"]),
     # Sedov, 42 592 particles, individual timesteps with particle and with pair kicks
-    "sedov22i": ("examples/sedov/in.sedov", ["-var", "n", "22", "-var", "steps", "individual"]),
+    "sedov22i": ("examples/sedov/in.sedov", ["-var", "n", "22", "-var", "steps", "individual",
+                                             "-var", "kicks", "particle"]),
     "sedov22ik": ("examples/sedov/in.sedov", ["-var", "n", "22", "-var", "steps", "individual",
                                               "-var", "kicks", "pair"]),
     # Evrard collapse, 3 604 particles to t 0.8: direct-summation self-gravity with zeta terms
     "evrard12": ("examples/evrard/in.evrard", ["-var", "n", "12", "-var", "tend", "0.8"]),
-    # the same with individual timesteps
+    # the same with individual timesteps (pair kicks)
     "evrard12i": ("examples/evrard/in.evrard", ["-var", "n", "12", "-var", "tend", "0.8",
-                                                "-var", "steps", "individual"]),
+                                                "-var", "steps", "individual", "-var", "kicks",
+                                                "pair"]),
 }
 
 _LOOP = re.compile(r"^Loop time of (\S+) on", re.M)

@@ -234,10 +234,10 @@ SCENES: Dict[str, Scene] = {
               "(no exact value: watch it converge with N)",
         presets={"steps": Preset(
             resolutions=(6, 8, 12), np=2, var=(),
-            variants="steps=global;steps=individual;steps=individual,kicks=pair",
+            variants="steps=global;steps=individual;steps=individual,kicks=particle",
             reference_label="no peer code run", reference=(),
-            notes="Evrard collapse with global and individual timesteps (particle and pair "
-                  "kicks), 2 MPI ranks")}),
+            notes="Evrard collapse with global and individual timesteps (pair kicks, the "
+                  "default, and particle kicks), 2 MPI ranks")}),
 
     "sod": Scene(
         input="examples/sod/in.sod", res_var="nx", out_var="out",
@@ -286,11 +286,11 @@ SCENES: Dict[str, Scene] = {
             # doc/validation.md's table, not this run: compare its times with that table's),
             # its L1(rho) by tools/swift_sedov_errors.py on its t = 0.1 snapshot
             resolutions=(12, 16, 22), np=2, var=(),
-            variants="steps=global;steps=individual;steps=individual,kicks=pair",
+            variants="steps=global;steps=individual;steps=individual,kicks=particle",
             reference_label="SWIFT (2 threads)",
             reference=((42875, 8.9, 0.448), (175616, 47.1, 0.398)),
-            notes="Sedov with global and individual timesteps (particle and pair kicks), 2 MPI "
-                  "ranks")}),
+            notes="Sedov with global and individual timesteps (pair kicks, the default, and "
+                  "particle kicks), 2 MPI ranks")}),
     "toystar": Scene(
         input="examples/toystar/in.toystar", res_var="n", out_var="out",
         default_res=(8, 12, 16), analyse=analyse_toystar,

@@ -15,7 +15,7 @@ individual runs' differences from the global one.
 Usage (from anywhere; after source build/env.sh: build/venv's python3 and lmp on the PATH)::
 
     python3 examples/sedov/compare_steps.py [--n 16] [--np 1] [--limiter N]
-        [--kicks particle|pair] [--vsig viscosity|pairs] [--outdir DIR]
+        [--kicks pair|particle] [--vsig viscosity|pairs] [--outdir DIR]
         [--assert 'l1=0.02,rshock=0.02,nolimiter=0.1,updates=0.30']
 
 ``--assert`` fails (exit 1) unless: the limited individual run's L1(rho) and shock radius
@@ -91,8 +91,9 @@ def main(argv=None):
     parser.add_argument("--np", type=int, default=1, help="MPI ranks")
     parser.add_argument("--limiter", type=int, default=None,
                         help="limiter levels of the individual run (default: the input's)")
-    parser.add_argument("--kicks", choices=("particle", "pair"), default="particle",
-                        help="fix sph/astro kicks of the individual runs")
+    parser.add_argument("--kicks", choices=("particle", "pair"), default="pair",
+                        help="fix sph/astro kicks of the individual runs (default pair, the "
+                        "fix's default)")
     parser.add_argument("--vsig", choices=("viscosity", "pairs"), default="viscosity",
                         help="fix sph/astro vsig of all three runs (default viscosity, the "
                         "fix's default)")

@@ -193,10 +193,7 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
     comm_reverse = 8;    // pair impulses and forces of the ghosts with pairs, and their index
     // [5] active particles this step, [6] occupied bins, [7] particle-updates, [8] woken
     size_vector = 8;
-  } else if (pair_kicks_)
-    error->all(FLERR,
-               "fix sph/astro: kicks pair needs steps individual (global steps kick "
-               "every pair on the same step)");
+  }
   if (xsph_eps_ > 0.0) {    // per-atom output: the XSPH velocity correction
     peratom_flag = 1;
     size_peratom_cols = 3;
