@@ -210,6 +210,58 @@ TEST(IndividualSteps, SleepingParticlesDriftOnTheirParabola)
   EXPECT_LT(worst, 1e-3 * curvature);
 }
 
+// kicks pair integrates pair sph/astro's du/dt terms pair by pair, as its forces: a particle
+// inside its step is heated (or cooled) by the pairs its active neighbours evaluate; with
+// kicks particle its u changes only at its own kicks. Counted over the LAMMPS steps inside a
+// particle's step: its step began before the previous LAMMPS step (whose start gave it its
+// first half kick) and neither ends nor is shortened by the limiter in this one
+TEST(IndividualSteps, PairKicksHeatSleepingParticles)
+{
+  for (const std::string kicks : {"particle", "pair"}) {
+    auto lmp = open_lammps();
+    hot_spot(lmp, 4, "sph/astro courant 0.3 steps individual tend 0.03 kicks " + kicks);
+    commands(lmp, {"thermo 1000", "run 0"});
+    auto now = [&] {
+      auto *u = lmp->update;
+      return u->atime + (u->ntimestep - u->atimestep) * u->dt;
+    };
+    int inside = 0, changed = 0;
+    std::map<int, double> begin_older;
+    auto u_before = per_atom(lmp, "u");
+    auto begin_before = per_atom(lmp, "step_begin");
+    auto end_before = per_atom(lmp, "step_end");
+    for (int step = 0; step < 200 && now() < 0.03 - 1e-12; step++) {
+      commands(lmp, {"run 1 post no"});
+      const auto u_after = per_atom(lmp, "u");
+      const auto begin_after = per_atom(lmp, "step_begin");
+      const auto end_after = per_atom(lmp, "step_end");
+      // the time line starts a new cycle at each multiple of dt_max: all begins go down, and a
+      // step in the top bin then has the same begin and end as the one before
+      bool wrapped = false;
+      for (const auto &[id, b] : begin_after) wrapped = wrapped || b < begin_before.at(id);
+      if (wrapped) begin_before.clear();
+      for (const auto &[id, b] : begin_older) {
+        if (wrapped || !begin_before.count(id)) break;
+        if (begin_before.at(id) != b || begin_after.at(id) != b) continue;
+        if (end_after.at(id) != end_before.at(id)) continue;
+        inside++;
+        if (u_after.at(id) != u_before.at(id)) changed++;
+      }
+      begin_older = begin_before;
+      u_before = u_after;
+      begin_before = begin_after;
+      end_before = end_after;
+    }
+    std::printf("kicks %s: u changed inside %d of %d particle steps\n", kicks.c_str(), changed,
+                inside);
+    EXPECT_GT(inside, 100) << kicks;
+    if (kicks == "particle")
+      EXPECT_EQ(changed, 0);
+    else
+      EXPECT_GT(changed, inside / 10);
+  }
+}
+
 // without the limiter a blast runs into sleeping gas: its energy goes wrong
 TEST(IndividualSteps, WithoutTheLimiterABlastIntoSleepingGasGoesWrong)
 {

@@ -140,11 +140,11 @@ TEST(DuePairs, ExactlyThePairsWithAnActiveAtomInTheListsOrder)
 
 // the force pass's record of its pairs (sph_astro_evaluated_pairs.h): rows without pairs are
 // left out, each pair is visited once with its row's atom, its partner, whether this rank
-// updates the partner, and its force's index
+// updates the partner, and its force's (and du/dt terms') index
 TEST(EvaluatedPairs, EachRecordedPairIsVisitedOnceWithItsRowAtom)
 {
   EvaluatedPairs pairs;
-  pairs.clear(true);
+  pairs.clear(true, true);
   const std::vector<std::vector<std::pair<int, bool>>> rows = {
       {{5, true}, {7, false}}, {}, {{0, true}}, {}, {{9, false}, {3, true}, {4, true}}};
   std::vector<std::tuple<int, int, bool, double>> expected;
@@ -152,7 +152,7 @@ TEST(EvaluatedPairs, EachRecordedPairIsVisitedOnceWithItsRowAtom)
   for (std::size_t i = 0; i < rows.size(); i++) {
     const int begin = static_cast<int>(pairs.partner.size());
     for (const auto &[j, update_j] : rows[i]) {
-      pairs.add(j, update_j, f);
+      pairs.add(j, update_j, f, 2.0 * f, 3.0 * f);
       expected.emplace_back(static_cast<int>(i), j, update_j, f);
       f += 1.0;
     }
@@ -162,13 +162,16 @@ TEST(EvaluatedPairs, EachRecordedPairIsVisitedOnceWithItsRowAtom)
   std::vector<std::tuple<int, int, bool, double>> visited;
   pairs.for_each([&](int i, int j, bool update_j, int k) {
     visited.emplace_back(i, j, update_j, pairs.fpair[k]);
+    EXPECT_EQ(pairs.heat[2 * k], 2.0 * pairs.fpair[k]);
+    EXPECT_EQ(pairs.heat[2 * k + 1], 3.0 * pairs.fpair[k]);
   });
   EXPECT_EQ(visited, expected);
 
-  pairs.clear(false);    // the limiter alone: no forces kept
-  pairs.add(2, true, 1.0);
+  pairs.clear(false, true);    // the limiter alone: no forces or du/dt terms kept
+  pairs.add(2, true, 1.0, 1.0, 1.0);
   pairs.end_row(1, 0);
   EXPECT_TRUE(pairs.fpair.empty());
+  EXPECT_TRUE(pairs.heat.empty());
   int count = 0;
   pairs.for_each([&](int i, int j, bool update_j, int) {
     EXPECT_EQ(i, 1);

@@ -189,8 +189,8 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
     if (xsph_eps_ > 0.0)
       error->all(FLERR, "fix sph/astro: xsph is not available with steps individual");
     steps_ = new IndividualSteps(lmp, this, limiter_levels_, pair_kicks_);
-    comm_forward = 6;    // step begin, end, woken, end_then of changed atoms, and their index
-    comm_reverse = 8;    // pair impulses and forces of the ghosts with pairs, and their index
+    comm_forward = 6;     // step begin, end, woken, end_then of changed atoms, and their index
+    comm_reverse = 10;    // pair impulses and forces (and u) of the ghosts with pairs, and index
     // [5] active particles this step, [6] occupied bins, [7] particle-updates, [8] woken
     size_vector = 8;
   }

@@ -385,7 +385,8 @@ void PairSPHAstro::compute(int eflag, int vflag)
                  STEPS_FIX_ID);
     arrays.steps = {active_, atom->dvector[step_index_->omega], atom->dvector[step_index_->balsara],
                     atom->dvector[step_index_->divv], atom->dvector[step_index_->nneigh]};
-    evaluated_pairs_.clear(record_forces_);    // the limiter, and kicks pair with the forces
+    // the limiter, and kicks pair with the forces (and du/dt terms where u evolves)
+    evaluated_pairs_.clear(record_forces_, opt_->eos.uses_energy() && !scheme_->entropy);
     if (record_pairs_) ctx.pairs = &evaluated_pairs_;
   }
   PairExchange exchange(this);

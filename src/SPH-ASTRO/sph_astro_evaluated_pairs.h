@@ -20,28 +20,36 @@ namespace SPHAstro {
 // j < 0 stands for ~j, a ghost this rank does not update (newton off: the pair is recorded on
 // both ranks, each for its own atom). With forces, fpair[k] gives the pressure and viscous
 // force of pair k: F_ij = fpair (x_i - x_j) on i (the positions of the force evaluation),
-// -F_ij on j.
+// -F_ij on j. With heats, heat[2k] and heat[2k+1] give the pair's terms of du_i/dt and du_j/dt
+// (pressure work and dissipation: m_i heat[2k] + m_j heat[2k+1] = -F_ij . v_ij).
 struct EvaluatedPairs {
   struct Row {
     int i, end;
   };
   std::vector<Row> rows;
   std::vector<int> partner;
-  std::vector<double> fpair;
+  std::vector<double> fpair, heat;
   bool forces = false;    // fpair is recorded
+  bool heats = false;     // heat is recorded (with the forces)
 
-  void clear(bool with_forces)
+  void clear(bool with_forces, bool with_heats)
   {
     rows.clear();
     partner.clear();
     fpair.clear();
+    heat.clear();
     forces = with_forces;
+    heats = with_forces && with_heats;
   }
   // the force pass: one pair of the row of i, then the row's end
-  void add(int j, bool update_j, double f)
+  void add(int j, bool update_j, double f, double heat_i, double heat_j)
   {
     partner.push_back(update_j ? j : ~j);
     if (forces) fpair.push_back(f);
+    if (heats) {
+      heat.push_back(heat_i);
+      heat.push_back(heat_j);
+    }
   }
   void end_row(int i, int begin)
   {
@@ -61,7 +69,7 @@ struct EvaluatedPairs {
   double memory_usage() const
   {
     return static_cast<double>(rows.capacity() * sizeof(Row) + partner.capacity() * sizeof(int) +
-                               fpair.capacity() * sizeof(double));
+                               (fpair.capacity() + heat.capacity()) * sizeof(double));
   }
 };
 

@@ -30,9 +30,11 @@ using namespace LAMMPS_NS;
 namespace SPHAstro {
 
 namespace {
-  constexpr int NTIMES = 4;        // per-atom times of pair_impulses(): begin, end, woken, end_then
-  constexpr int SUM_STRIDE = 6;    // sums_ per atom: impulses, forces
-  const double NO_PAIR_KICKS[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};    // kicks particle
+  constexpr int NTIMES = 4;    // per-atom times of pair_impulses(): begin, end, woken, end_then
+  // sums_ per atom: impulses and u kick (SUM_KICKS), forces and du/dt (the next SUM_KICKS)
+  constexpr int SUM_KICKS = 4;
+  constexpr int SUM_STRIDE = 2 * SUM_KICKS;
+  const double NO_PAIR_KICKS[SUM_STRIDE] = {0.0};    // kicks particle
 
 }    // namespace
 
@@ -149,18 +151,25 @@ void IndividualSteps::start(const std::vector<double> &wanted, double dtmax, dou
   double **accel_other = atom->darray[idx_.accel_other];
   double **kick = atom->darray[idx_.kick];
   double **lead = atom->darray[idx_.pair_lead];
+  double *dudt_other = atom->dvector[idx_.dudt_other];
+  double *kick_u = atom->dvector[idx_.kick_u];
+  double *lead_u = atom->dvector[idx_.lead_u];
   const double *begin = atom->dvector[idx_.begin];
   const double *end = atom->dvector[idx_.end];
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
     const double *sum = pair_kicks_ ? &sums_[SUM_STRIDE * i] : NO_PAIR_KICKS;
+    const double *rate = sum + SUM_KICKS;
     const double half = 0.5 * (end[i] - begin[i]) * tick();
     for (int d = 0; d < 3; d++) {
-      accel_other[i][d] = (f[i][d] - sum[3 + d]) / m;
+      accel_other[i][d] = (f[i][d] - rate[d]) / m;
       kick[i][d] = sum[d] / m;
-      lead[i][d] = (half * sum[3 + d] - sum[d]) / m;
+      lead[i][d] = (half * rate[d] - sum[d]) / m;
     }
+    dudt_other[i] = dudt_kept[i] - rate[3];
+    kick_u[i] = sum[3];
+    lead_u[i] = half * rate[3] - sum[3];
   }
   advance_to_next();
 }
@@ -186,6 +195,9 @@ void IndividualSteps::kick_drift(double h_cap, bool evolve_u)
   double **kick = atom->darray[idx_.kick];
   const double *const *lead = atom->darray[idx_.pair_lead];
   const double *dudt = atom->dvector[idx_.dudt];
+  const double *dudt_other = atom->dvector[idx_.dudt_other];
+  double *kick_u = atom->dvector[idx_.kick_u];
+  const double *lead_u = atom->dvector[idx_.lead_u];
   const double *divv = atom->dvector[idx_.divv];
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) {
@@ -199,10 +211,12 @@ void IndividualSteps::kick_drift(double h_cap, bool evolve_u)
       v[i][d] += kick[i][d];
       kick[i][d] = 0.0;
     }
-    if (begin[i] == ti_now_) {    // a step begins: first half kick (forces not of pairs)
+    if (evolve_u) u[i] += kick_u[i];
+    kick_u[i] = 0.0;
+    if (begin[i] == ti_now_) {    // a step begins: first half kick (terms not of pairs)
       const double half = 0.5 * (end[i] - begin[i]) * t;
       for (int d = 0; d < 3; d++) v[i][d] += half * accel_other[i][d];
-      if (evolve_u) u[i] += half * dudt[i];
+      if (evolve_u) u[i] += half * dudt_other[i];
     }
     // the velocity predicted from the middle of the particle's step; with kicks pair, the
     // pairs on a shorter interval than that step have kicked it further (their lead is the
@@ -219,7 +233,7 @@ void IndividualSteps::kick_drift(double h_cap, bool evolve_u)
       x[i][d] += dt * (v[i][d] + tau_drift * accel[i][d] + lead_i[d]);
       vest[i][d] = v[i][d] + tau * accel[i][d] + lead_i[d];
     }
-    uest[i] = evolve_u ? u[i] + tau * dudt[i] : u[i];
+    uest[i] = evolve_u ? u[i] + tau * dudt[i] + lead_u[i] : u[i];
     // rho and h follow the last div v (active particles: the h iteration's first guess)
     if (h_cap > 0.0) h[i] = std::min(h[i] * std::exp(dt_over_d * divv[i]), h_cap);
     rho[i] *= std::exp(-dt * divv[i]);
@@ -261,33 +275,37 @@ void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
   double **accel_other = atom->darray[idx_.accel_other];
   double **lead = atom->darray[idx_.pair_lead];
   double *dudt_kept = atom->dvector[idx_.dudt];
+  double *dudt_other = atom->dvector[idx_.dudt_other];
+  double *lead_u = atom->dvector[idx_.lead_u];
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
     // the pairs evaluated now close their interval on both atoms, active or not
     const double *sum = pair_kicks_ ? &sums_[SUM_STRIDE * i] : NO_PAIR_KICKS;
+    const double *rate = sum + SUM_KICKS;
     for (int d = 0; d < 3; d++) v[i][d] += sum[d] / m;
+    if (evolve_u) u[i] += sum[3];
+    const double half = 0.5 * (end[i] - begin[i]) * t;
     if (!active_[i]) {    // other forces of this step are not its: its last evaluation's
       for (int d = 0; d < 3; d++) lead[i][d] -= sum[d] / m;
+      lead_u[i] -= sum[3];
       for (int d = 0; d < 3; d++) f[i][d] = m * accel[i][d];
       dudt[i] = dudt_kept[i];
-      continue;
+    } else {
+      for (int d = 0; d < 3; d++) {
+        accel[i][d] = f[i][d] / m;
+        accel_other[i][d] = (f[i][d] - rate[d]) / m;
+        v[i][d] += half * accel_other[i][d];
+      }
+      dudt_kept[i] = dudt[i];
+      dudt_other[i] = dudt[i] - rate[3];
+      if (evolve_u) u[i] += half * dudt_other[i];
     }
-    const double half = 0.5 * (end[i] - begin[i]) * t;
-    for (int d = 0; d < 3; d++) {
-      accel[i][d] = f[i][d] / m;
-      accel_other[i][d] = (f[i][d] - sum[3 + d]) / m;
-      v[i][d] += half * accel_other[i][d];
-    }
-    dudt_kept[i] = dudt[i];
-    if (evolve_u) {
-      u[i] += half * dudt[i];
-      if (!(u[i] >= 0.0) || !std::isfinite(u[i]))
-        error->one(FLERR,
-                   "fix sph/astro: atom {} has specific internal energy u = {} (du/dt = {}) at "
-                   "step {} (its own step {}); lower the timestep (courant, force, energy)",
-                   atom->tag[i], u[i], dudt[i], update->ntimestep, 2.0 * half);
-    }
+    if (evolve_u && (!(u[i] >= 0.0) || !std::isfinite(u[i])))
+      error->one(FLERR,
+                 "fix sph/astro: atom {} has specific internal energy u = {} (du/dt = {}) at "
+                 "step {} (its own step {}); lower the timestep (courant, force, energy)",
+                 atom->tag[i], u[i], dudt[i], update->ntimestep, 2.0 * half);
   }
 }
 
@@ -307,11 +325,16 @@ void IndividualSteps::end_of_step(const std::vector<double> &wanted, PairSPHAstr
   const double *const *accel_other = atom->darray[idx_.accel_other];
   const double *begin = atom->dvector[idx_.begin];
   const double *end = atom->dvector[idx_.end];
+  double *kick_u = atom->dvector[idx_.kick_u];
+  double *lead_u = atom->dvector[idx_.lead_u];
+  const double *dudt = atom->dvector[idx_.dudt];
+  const double *dudt_other = atom->dvector[idx_.dudt_other];
   for (int i = 0; pair_kicks_ && i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
     const double *sum = &sums_[SUM_STRIDE * i];
     for (int d = 0; d < 3; d++) kick[i][d] = sum[d] / m;
+    kick_u[i] = sum[3];
     // lead: sum_j F_ij (t_mid,i - t_mid,ij) / m, all pairs of an active particle anew (its
     // step's middle is half a step ahead; a pair's is w_ij ahead); an inactive one's
     // pairs evaluated now have kicked it by sum_j F_ij w_ij further
@@ -319,8 +342,10 @@ void IndividualSteps::end_of_step(const std::vector<double> &wanted, PairSPHAstr
       const double half = 0.5 * (end[i] - begin[i]) * tick();
       for (int d = 0; d < 3; d++)
         lead[i][d] = half * (accel[i][d] - accel_other[i][d]) - sum[d] / m;
+      lead_u[i] = half * (dudt[i] - dudt_other[i]) - sum[3];
     } else {
       for (int d = 0; d < 3; d++) lead[i][d] -= sum[d] / m;
+      lead_u[i] -= sum[3];
     }
   }
   advance_to_next();
@@ -412,6 +437,8 @@ void IndividualSteps::limit(PairSPHAstro *pair)
   const double *const *accel = atom->darray[idx_.accel];
   double **lead = atom->darray[idx_.pair_lead];
   const double *dudt = atom->dvector[idx_.dudt];
+  const double *dudt_other = atom->dvector[idx_.dudt_other];
+  double *lead_u = atom->dvector[idx_.lead_u];
   double *woken = atom->dvector[idx_.woken];
   double *end_then = atom->dvector[idx_.end_then];
   for (int i = 0; i < nlocal; i++) {
@@ -430,9 +457,11 @@ void IndividualSteps::limit(PairSPHAstro *pair)
     const double shift = 0.5 * (new_end - end[i]) * t;
     for (int d = 0; d < 3; d++) v[i][d] += shift * accel_other[i][d];
     // its step's middle moves by shift, its pairs' do not
-    if (pair_kicks_)
+    if (pair_kicks_) {
       for (int d = 0; d < 3; d++) lead[i][d] += shift * (accel[i][d] - accel_other[i][d]);
-    u[i] += shift * dudt[i];
+      lead_u[i] += shift * (dudt[i] - dudt_other[i]);
+    }
+    u[i] += shift * dudt_other[i];
     if (woken[i] < 0.0) {    // the end its pairs opened with until now (pair_impulses)
       woken[i] = ti_now_;
       end_then[i] = end[i];
@@ -450,8 +479,10 @@ void IndividualSteps::limit(PairSPHAstro *pair)
 // Closing, at the evaluation (ti_next_): w = (ti_next_ - t_o) - w_o, the rest of the interval,
 // with t_o = max(begin_i, begin_j) and w_o from the ends the atoms had at t_o (an atom the
 // limiter woke after t_o had d_step_end_then): w = w_o unless a wake shortened the interval.
-// Per owned atom (with the ghosts' parts): sums_[n i..n i+2] = sum_j F_ij w_ij, with_forces:
-// [n i+3..n i+5] = sum_j F_ij (n = nsum_: 6 with the forces, else 3). The times the opening
+// The pair's du/dt terms (EvaluatedPairs::heat) are integrated in the same way, each atom's
+// its own. Per owned atom (with the ghosts' parts), n = SUM_STRIDE: sums_[n i..n i+2] =
+// sum_j F_ij w_ij, [n i+3] = sum_j (du_i/dt)_ij w_ij, with_forces: [n i+4..n i+6] = sum_j F_ij,
+// [n i+7] = sum_j (du_i/dt)_ij (nsum_ of them sent: 8 with the forces, else 4). The times the opening
 // sent to the ghosts serve the next closing unless atoms moved between ranks or were
 // reordered (a reneighbouring) or the time line started a new cycle.
 void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_forces)
@@ -472,7 +503,7 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_
     times_opened_ = step;
   }
   times_nall_ = nall;
-  nsum_ = with_forces ? 6 : 3;
+  nsum_ = with_forces ? SUM_STRIDE : SUM_KICKS;
   // the ghosts' entries are zero between calls; the owned ones of the last call are cleared
   if (sums_.size() < SUM_STRIDE * static_cast<std::size_t>(nall))
     sums_.resize(SUM_STRIDE * static_cast<std::size_t>(nall), 0.0);
@@ -482,12 +513,14 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_
   const double half_tick = 0.5 * tick();
   double **x = atom->x;    // (those of the force evaluation: no drift since)
   const EvaluatedPairs &pairs = pair->evaluated_pairs();
+  const double *heat = pairs.heats ? pairs.heat.data() : nullptr;
   int k = 0;
   for (const EvaluatedPairs::Row &row : pairs.rows) {
     const int i = row.i;
     const double *ti = &times_[NTIMES * i];
     const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
-    double impulse[3] = {0.0, 0.0, 0.0}, force[3] = {0.0, 0.0, 0.0};
+    // impulse and force, then the u kick and du/dt
+    double impulse[SUM_KICKS] = {0.0, 0.0, 0.0, 0.0}, force[SUM_KICKS] = {0.0, 0.0, 0.0, 0.0};
     for (; k < row.end; k++) {
       const int jp = pairs.partner[k], j = jp >= 0 ? jp : ~jp;
       const double fpair = pairs.fpair[k];
@@ -506,17 +539,28 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_
         impulse[d] += w * f[d];
         force[d] += f[d];
       }
+      // (u: a closing weight below 0, of an interval a wake shortened below what its opening
+      // kick assumed, would take back heat at the new rate, which a shock may have raised
+      // far above the old one: u takes nothing back)
+      const double w_u = std::max(w, 0.0);
+      if (heat) {
+        impulse[3] += w_u * heat[2 * k];
+        force[3] += heat[2 * k];
+      }
       if (jp < 0) continue;
       double *sj = &sums_[SUM_STRIDE * j];
       for (int d = 0; d < 3; d++) sj[d] -= w * f[d];
-      if (with_forces)
-        for (int d = 0; d < 3; d++) sj[3 + d] -= f[d];
+      if (heat) sj[3] += w_u * heat[2 * k + 1];
+      if (with_forces) {
+        for (int d = 0; d < 3; d++) sj[SUM_KICKS + d] -= f[d];
+        if (heat) sj[SUM_KICKS + 3] += heat[2 * k + 1];
+      }
       touch(j, nlocal);
     }
     double *si = &sums_[SUM_STRIDE * i];
-    for (int d = 0; d < 3; d++) si[d] += impulse[d];
+    for (int d = 0; d < SUM_KICKS; d++) si[d] += impulse[d];
     if (with_forces)
-      for (int d = 0; d < 3; d++) si[3 + d] += force[d];
+      for (int d = 0; d < SUM_KICKS; d++) si[SUM_KICKS + d] += force[d];
     touch(i, nlocal);
   }
   comm_ = Comm::SUMS;

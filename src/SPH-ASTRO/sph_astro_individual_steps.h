@@ -10,7 +10,7 @@
 // 364, 1105, sec. 4; the time line: sph_astro_time_bins.h). A LAMMPS step goes from one end
 // of a particle step to the next (update->dt varies); the particles whose step ends with it
 // are active, and pair sph/astro evaluates the pairs with an active particle only.
-//   a step begins     v += a_other dt_i/2, u += du/dt dt_i/2   (of its last evaluation)
+//   a step begins     v += a_other dt_i/2, u += du/dt_other dt_i/2   (of its last evaluation)
 //   every LAMMPS step every particle's v and u are predicted to the end of the LAMMPS step,
 //                     v_est(t) = v + a (t - t_mid,i), u_est = u + du/dt (t - t_mid,i);
 //                     x += v_est(t_c) dt with t_c the LAMMPS step's middle (inside its step
@@ -18,24 +18,28 @@
 //                     x_b + (v_b + a dt_i / 2) dt_i, as kick-drift-kick does); an inactive
 //                     particle's rho and h follow its last div v: rho *= exp(-div v dt),
 //                     h *= exp(div v dt / d)
-//   a step ends       v += a_other,new dt_i/2, u += du/dt_new dt_i/2; the new bin from the
+//   a step ends       v += a_other,new dt_i/2, u += du/dt_other,new dt_i/2; the new bin from the
 //                     timestep criteria (shorter at once, longer one bin at a time where its
 //                     grid passes), and the timestep limiter (Saitoh & Makino 2009, ApJ 697,
 //                     L99): no particle more than 2^levels times its neighbours' step; a
 //                     sleeping neighbour is woken (Durier & Dalla Vecchia 2012, MNRAS 419,
 //                     465): its step ends at the next point of the allowed bin's grid, and its
 //                     first half kick is corrected to the shortened step (its parabola is not)
-// kicks particle (default): a_other is the whole acceleration of the particle's evaluation.
-// kicks pair: pair sph/astro's forces are integrated pair by pair, on the shorter step of the
-// pair's two particles (Springel 2010, MNRAS 401, 791, sec. 7, for fluxes between cells): the
-// pair's interval runs from one time either particle is active to the next, and at each
-// evaluation both particles get the same impulse F_ij (w_closing + w_opening) (the opening
+// kicks particle: a_other is the whole acceleration of the particle's evaluation.
+// kicks pair (default): pair sph/astro's forces are integrated pair by pair, on the shorter
+// step of the pair's two particles (Springel 2010, MNRAS 401, 791, sec. 7, for fluxes between
+// cells): the pair's interval runs from one time either particle is active to the next, and at
+// each evaluation both particles get the same impulse F_ij (w_closing + w_opening) (the opening
 // part given at the start of the next LAMMPS step), so the total momentum is conserved to
-// round-off; a_other is the rest (gravity, other styles, fixes). u is integrated per particle.
-// A pair on a shorter interval than particle i's step has kicked i up to its own interval's
-// middle t_mid,ij, not t_mid,i: the prediction adds its lead, v_est = v + a (t - t_mid,i) +
-// sum_j F_ij (t_mid,i - t_mid,ij) / m_i (d2_step_pair_lead). A pair whose interval a wake
-// shortened closes with the rest of it, w_closing = (t - t_open) - w_opening.
+// round-off; a_other is the rest (gravity, other styles, fixes). The pair's du/dt terms (P dV
+// and dissipation, m_i du_i + m_j du_j = -F_ij . v_ij) are integrated on the same intervals,
+// each particle's own, so that a sleeping particle's u follows the work its pairs do on it;
+// du/dt_other (the rest: conduction, fixes) per particle. A pair on a shorter interval than
+// particle i's step has kicked i up to its own interval's middle t_mid,ij, not t_mid,i: the
+// prediction adds its lead, v_est = v + a (t - t_mid,i) + sum_j F_ij (t_mid,i - t_mid,ij) / m_i
+// (d2_step_pair_lead; for u d_step_lead_u). A pair whose interval a wake shortened closes with
+// the rest of it, w_closing = (t - t_open) - w_opening (for u at least 0: taking back heat at
+// the new rate could make u negative).
 // Other forces on inactive particles are computed by LAMMPS every step and not used: an
 // inactive particle keeps a_other of its last evaluation.
 
