@@ -53,6 +53,9 @@ SCENES = {
                                              "-var", "kicks", "particle"]),
     "sedov22ik": ("examples/sedov/in.sedov", ["-var", "n", "22", "-var", "steps", "individual",
                                               "-var", "kicks", "pair"]),
+    # Sedov, 171 500 particles, individual timesteps with pair kicks
+    "sedov35ik": ("examples/sedov/in.sedov", ["-var", "n", "35", "-var", "steps", "individual",
+                                              "-var", "kicks", "pair"]),
     # Evrard collapse, 3 604 particles to t 0.8: direct-summation self-gravity with zeta terms
     "evrard12": ("examples/evrard/in.evrard", ["-var", "n", "12", "-var", "tend", "0.8"]),
     # the same with individual timesteps (pair kicks)

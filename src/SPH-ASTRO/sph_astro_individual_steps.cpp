@@ -159,7 +159,7 @@ void IndividualSteps::start(const std::vector<double> &wanted, double dtmax, dou
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
-    const double *sum = pair_kicks_ ? &sums_[SUM_STRIDE * i] : NO_PAIR_KICKS;
+    const double *sum = pair_sums(i);
     const double *rate = sum + SUM_KICKS;
     const double half = 0.5 * (end[i] - begin[i]) * tick();
     for (int d = 0; d < 3; d++) {
@@ -281,7 +281,7 @@ void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
     // the pairs evaluated now close their interval on both atoms, active or not
-    const double *sum = pair_kicks_ ? &sums_[SUM_STRIDE * i] : NO_PAIR_KICKS;
+    const double *sum = pair_sums(i);
     const double *rate = sum + SUM_KICKS;
     for (int d = 0; d < 3; d++) v[i][d] += sum[d] / m;
     if (evolve_u) u[i] += sum[3];
@@ -332,7 +332,7 @@ void IndividualSteps::end_of_step(const std::vector<double> &wanted, PairSPHAstr
   for (int i = 0; pair_kicks_ && i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
-    const double *sum = &sums_[SUM_STRIDE * i];
+    const double *sum = pair_sums(i);
     for (int d = 0; d < 3; d++) kick[i][d] = sum[d] / m;
     kick_u[i] = sum[3];
     // lead: sum_j F_ij (t_mid,i - t_mid,ij) / m, all pairs of an active particle anew (its
@@ -508,8 +508,11 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_
   if (sums_.size() < SUM_STRIDE * static_cast<std::size_t>(nall))
     sums_.resize(SUM_STRIDE * static_cast<std::size_t>(nall), 0.0);
   if (touched_mark_.size() < static_cast<std::size_t>(nall)) touched_mark_.resize(nall, 0);
-  std::fill(sums_.begin(), sums_.begin() + SUM_STRIDE * std::max(nlocal, sums_nlocal_), 0.0);
-  sums_nlocal_ = nlocal;
+  for (int i : touched_owned_) {    // (slots: atoms may have moved since)
+    std::fill_n(&sums_[SUM_STRIDE * static_cast<std::size_t>(i)], SUM_STRIDE, 0.0);
+    touched_mark_[i] = 0;
+  }
+  touched_owned_.clear();
   const double half_tick = 0.5 * tick();
   double **x = atom->x;    // (those of the force evaluation: no drift since)
   const EvaluatedPairs &pairs = pair->evaluated_pairs();
@@ -570,6 +573,12 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_
     touched_mark_[g] = 0;
   }
   touched_.clear();
+}
+
+const double *IndividualSteps::pair_sums(int i) const
+{
+  return (pair_kicks_ && touched_mark_[i]) ? &sums_[SUM_STRIDE * static_cast<std::size_t>(i)]
+                                           : NO_PAIR_KICKS;
 }
 
 // the owned atoms' times to their ghosts: all, or (changed_only) those that differ from what

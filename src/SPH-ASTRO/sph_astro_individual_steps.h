@@ -152,8 +152,8 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   int bins_nall_ = 0;                        // owned + ghost atoms then
   std::vector<double> times_, sums_;         // owned and ghost times, pair sums (pair_impulses)
   int nsum_ = 6;                             // sums_ used per atom: impulses, and forces if 6
-  int sums_nlocal_ = 0;                      // the owned atoms of the last pair_impulses()
   std::vector<int> touched_;                 // ghosts with pair sums: only they are sent
+  std::vector<int> touched_owned_;           // owned atoms with pair sums (of the last call)
   std::vector<char> touched_mark_;
   std::vector<char> times_changed_;        // owned and ghost atoms whose times are sent
   LAMMPS_NS::bigint times_opened_ = -1;    // the steps of the last opening and closing whose
@@ -178,13 +178,16 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   void assign_bins(const std::vector<double> &wanted, bool fresh, LAMMPS_NS::PairSPHAstro *pair);
   void limit(LAMMPS_NS::PairSPHAstro *pair);
   void pair_impulses(LAMMPS_NS::PairSPHAstro *pair, bool closing, bool with_forces);
+  // owned atom i's sums of the last pair_impulses() (zeros for an atom in no pair, or with
+  // kicks particle)
+  const double *pair_sums(int i) const;
   void send_times(bool changed_only);
   void send_bins();
   void touch(int i, int nlocal)
   {
-    if (i >= nlocal && !touched_mark_[i]) {
+    if (!touched_mark_[i]) {
       touched_mark_[i] = 1;
-      touched_.push_back(i);
+      (i >= nlocal ? touched_ : touched_owned_).push_back(i);
     }
   }
   void advance_to_next();
