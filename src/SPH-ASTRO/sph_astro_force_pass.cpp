@@ -98,10 +98,14 @@ namespace {
         if (LEVEL >= FORCE_COMMON && s.alpha_u > 0.0) f.condrate[j] += c.crate_j;
       }
       if (ctx.pairs) {
-        // the pair's du/dt terms: the P dV work (in heat with the geometric form) and heat
-        const bool pdv = s.pressure != PressureForm::GEOMETRIC;
-        ctx.pairs->add(j, update_j, c.fpair, c.heat_i + (pdv ? own.pi.prho * c.vgw_i : 0.0),
-                       c.heat_j + (pdv ? pj.prho * c.vgw_j : 0.0));
+        if (ctx.pairs->heats) {
+          // the pair's du/dt terms: the P dV work (in heat with the geometric form) and heat
+          const bool pdv = s.pressure != PressureForm::GEOMETRIC;
+          ctx.pairs->add(j, update_j, c.fpair, c.heat_i + (pdv ? own.pi.prho * c.vgw_i : 0.0),
+                         c.heat_j + (pdv ? pj.prho * c.vgw_j : 0.0));
+        } else {
+          ctx.pairs->add(j, update_j, c.fpair, 0.0, 0.0);
+        }
       }
       if (ctx.tally)
         ctx.tally->ev_tally(i, j, ctx.p.nlocal, ctx.newton, 0.0, 0.0, c.fpair, dx, dy, dz);
