@@ -75,9 +75,10 @@ TEST(IndividualSteps, OneBinIsTheGlobalLeapfrog)
 }
 
 // a hot spot in cold gas: its particles step short, the rest long; far fewer particle-updates
-// than steps x particles; the energy error stays small, momentum is kept to round-off. vsig: the default viscosity
-// (each particle's own signal speed: the limiter wakes the cold gas the blast reaches) or
-// pairs (a cold particle next to hot gas takes its sound speed at its next evaluation)
+// than steps x particles; the energy error stays small, momentum is kept to round-off. vsig:
+// the default viscosity (each particle's own signal speed: the limiter wakes the cold gas the
+// blast reaches) or pairs (a cold particle next to hot gas takes its sound speed at its next
+// evaluation)
 class HotSpot : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(HotSpot, SpreadsParticlesOverBins)

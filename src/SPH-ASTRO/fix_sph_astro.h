@@ -133,7 +133,7 @@ class FixSPHAstro : public Fix {
 
   // individual timesteps (steps individual; sph_astro_individual_steps.h), null: global
   SPHAstro::IndividualSteps *steps_ = nullptr;
-  bool pair_kicks_ = true;    // individual steps: pair forces integrated pair by pair
+  bool pair_kicks_ = true;    // individual steps: pair forces and du/dt integrated pair by pair
   int limiter_levels_ = 1;    // the limiter: no step more than 2^levels x a neighbour's (0: off)
   std::vector<double> wanted_;
   // the timestep criteria of atom i: Courant, force, energy, conduction (infinite where one

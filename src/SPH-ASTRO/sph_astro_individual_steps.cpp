@@ -481,10 +481,10 @@ void IndividualSteps::limit(PairSPHAstro *pair)
 // limiter woke after t_o had d_step_end_then): w = w_o unless a wake shortened the interval.
 // The pair's du/dt terms (EvaluatedPairs::heat) are integrated in the same way, each atom's
 // its own. Per owned atom (with the ghosts' parts), n = SUM_STRIDE: sums_[n i..n i+2] =
-// sum_j F_ij w_ij, [n i+3] = sum_j (du_i/dt)_ij w_ij, with_forces: [n i+4..n i+6] = sum_j F_ij,
-// [n i+7] = sum_j (du_i/dt)_ij (nsum_ of them sent: 8 with the forces, else 4). The times the opening
-// sent to the ghosts serve the next closing unless atoms moved between ranks or were
-// reordered (a reneighbouring) or the time line started a new cycle.
+// sum_j F_ij w_ij, [n i+3] = sum_j (du_i/dt)_ij w_ij, with_forces: [n i+4..n i+6] =
+// sum_j F_ij, [n i+7] = sum_j (du_i/dt)_ij (nsum_ of them sent: 8 with the forces, else 4).
+// The times the opening sent to the ghosts serve the next closing unless atoms moved between
+// ranks or were reordered (a reneighbouring) or the time line started a new cycle.
 void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_forces)
 {
   if (!pair_kicks_) return;
