@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 using namespace LAMMPS_NS;
 
@@ -31,10 +32,24 @@ namespace SPHAstro {
 
 namespace {
   constexpr int NTIMES = 4;    // per-atom times of pair_impulses(): begin, end, woken, end_then
-  // sums_ per atom: impulses and u kick (SUM_KICKS), forces and du/dt (the next SUM_KICKS)
+  // sums_ per atom (pair_impulses): impulses and u kick (SUM_KICKS); with the forces the
+  // next SUM_KICKS: sum_j F_ij and du/dt; a closing: then sum_j F_ij t_mid,ij of the
+  // intervals that close (3, time); an opening: per pending slot, sum_j F_ij of the pairs
+  // whose close the atom sleeps through and that close (ticks) (4 per slot)
   constexpr int SUM_KICKS = 4;
-  constexpr int SUM_STRIDE = 2 * SUM_KICKS;
+  constexpr int SUM_PENDING = 4 * PENDING_SLOTS;
+  constexpr int SUM_STRIDE = 2 * SUM_KICKS + SUM_PENDING;
   const double NO_PAIR_KICKS[SUM_STRIDE] = {0.0};    // kicks particle
+
+  // the slot of a pending close time t (ticks, > 0): the close times a sleeping particle's pairs
+  // are waiting for are each the next point after now of a bin's grid, so the coarsest bin
+  // whose grid holds t tells them apart
+  inline int pending_slot(double t)
+  {
+    const auto ticks = static_cast<std::uint64_t>(t);
+    const int b = TimeBins::MAX_BIN - __builtin_ctzll(ticks);
+    return b % PENDING_SLOTS;
+  }
 
 }    // namespace
 
@@ -147,7 +162,12 @@ void IndividualSteps::start(const std::vector<double> &wanted, double dtmax, dou
     advance_to_next();
     return;
   }
+  for (int i = 0; i < nlocal; i++) {    // a new hierarchy: no pair is pending
+    std::fill_n(atom->darray[idx_.pending][i], PENDING_SLOTS * PENDING_VALUES, 0.0);
+    std::fill_n(atom->darray[idx_.recent][i], RECENT_VALUES, 0.0);
+  }
   pair_impulses(pair, false, true);
+  keep_pending();
   double **accel_other = atom->darray[idx_.accel_other];
   double **kick = atom->darray[idx_.kick];
   double **lead = atom->darray[idx_.pair_lead];
@@ -160,7 +180,7 @@ void IndividualSteps::start(const std::vector<double> &wanted, double dtmax, dou
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
     const double *sum = pair_sums(i);
-    const double *rate = sum + SUM_KICKS;
+    const double *rate = sum + force_off_;
     const double half = 0.5 * (end[i] - begin[i]) * tick();
     for (int d = 0; d < 3; d++) {
       accel_other[i][d] = (f[i][d] - rate[d]) / m;
@@ -199,6 +219,8 @@ void IndividualSteps::kick_drift(double h_cap, bool evolve_u)
   double *kick_u = atom->dvector[idx_.kick_u];
   const double *lead_u = atom->dvector[idx_.lead_u];
   const double *divv = atom->dvector[idx_.divv];
+  const double *const *recent = atom->darray[idx_.recent];
+  const double t_end = ti_next_ * t;
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) {
       for (int d = 0; d < 3; d++) vest[i][d] = v[i][d];
@@ -226,12 +248,18 @@ void IndividualSteps::kick_drift(double h_cap, bool evolve_u)
     const double mid = 0.5 * (begin[i] + end[i]);
     const double tau_drift = (0.5 * (ti_now_ + ti_next_) - mid) * t;
     const double tau = (ti_next_ - mid) * t;
-    double lead_i[3] = {0.0, 0.0, 0.0};
+    // with kicks pair, a sleeping particle's prediction takes the forces of its pairs evaluated
+    // since its own evaluation, sum (F_ij,new - F_ij,old) (t - t_mid,ij) / m = s t - c (its
+    // drift stays on its parabola)
+    double lead_x[3] = {0.0, 0.0, 0.0}, lead_v[3] = {0.0, 0.0, 0.0};
     if (pair_kicks_)
-      for (int d = 0; d < 3; d++) lead_i[d] = lead[i][d];
+      for (int d = 0; d < 3; d++) {
+        lead_x[d] = lead[i][d];
+        lead_v[d] = lead[i][d] + recent[i][d] * t_end - recent[i][3 + d];
+      }
     for (int d = 0; d < 3; d++) {
-      x[i][d] += dt * (v[i][d] + tau_drift * accel[i][d] + lead_i[d]);
-      vest[i][d] = v[i][d] + tau * accel[i][d] + lead_i[d];
+      x[i][d] += dt * (v[i][d] + tau_drift * accel[i][d] + lead_x[d]);
+      vest[i][d] = v[i][d] + tau * accel[i][d] + lead_v[d];
     }
     uest[i] = evolve_u ? u[i] + tau * dudt[i] + lead_u[i] : u[i];
     // rho and h follow the last div v (active particles: the h iteration's first guess)
@@ -277,6 +305,8 @@ void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
   double *dudt_kept = atom->dvector[idx_.dudt];
   double *dudt_other = atom->dvector[idx_.dudt_other];
   double *lead_u = atom->dvector[idx_.lead_u];
+  double **pending = atom->darray[idx_.pending];
+  double **recent = atom->darray[idx_.recent];
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
@@ -289,9 +319,30 @@ void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
     if (!active_[i]) {    // other forces of this step are not its: its last evaluation's
       for (int d = 0; d < 3; d++) lead[i][d] -= sum[d] / m;
       lead_u[i] -= sum[3];
-      for (int d = 0; d < 3; d++) f[i][d] = m * accel[i][d];
       dudt[i] = dudt_kept[i];
+      if (pair_kicks_) {
+        // the pairs that close now replace their opening's force in the prediction: the
+        // pending slots of this close (and of earlier ones: pairs with a woken partner)
+        double old_force[3] = {0.0, 0.0, 0.0}, old_middle[3] = {0.0, 0.0, 0.0};
+        double *pend = pending[i];
+        for (int slot = 0; slot < PENDING_SLOTS; slot++, pend += PENDING_VALUES) {
+          if (!(pend[0] > 0.0 && pend[0] <= ti_next_)) continue;
+          for (int d = 0; d < 3; d++) {
+            old_force[d] += pend[2 + d];
+            old_middle[d] += pend[1] * t * pend[2 + d];
+          }
+          std::fill_n(pend, PENDING_VALUES, 0.0);
+        }
+        const double *middle = sum + 2 * SUM_KICKS;
+        for (int d = 0; d < 3; d++) {
+          recent[i][d] += (rate[d] - old_force[d]) / m;
+          recent[i][3 + d] += (middle[d] - old_middle[d]) / m;
+        }
+      }
+      for (int d = 0; d < 3; d++) f[i][d] = m * accel[i][d];
     } else {
+      std::fill_n(pending[i], PENDING_SLOTS * PENDING_VALUES, 0.0);
+      std::fill_n(recent[i], RECENT_VALUES, 0.0);
       for (int d = 0; d < 3; d++) {
         accel[i][d] = f[i][d] / m;
         accel_other[i][d] = (f[i][d] - rate[d]) / m;
@@ -317,6 +368,7 @@ void IndividualSteps::end_of_step(const std::vector<double> &wanted, PairSPHAstr
   // the pairs evaluated now open their next interval (the impulses only: an active particle's
   // sum_j F_ij is m (accel - accel_other) since final_kick)
   pair_impulses(pair, false, false);
+  keep_pending();
   const int nlocal = atom->nlocal;
   const int *mask = atom->mask;
   double **kick = atom->darray[idx_.kick];
@@ -480,9 +532,11 @@ void IndividualSteps::limit(PairSPHAstro *pair)
 // with t_o = max(begin_i, begin_j) and w_o from the ends the atoms had at t_o (an atom the
 // limiter woke after t_o had d_step_end_then): w = w_o unless a wake shortened the interval.
 // The pair's du/dt terms (EvaluatedPairs::heat) are integrated in the same way, each atom's
-// its own. Per owned atom (with the ghosts' parts), n = SUM_STRIDE: sums_[n i..n i+2] =
-// sum_j F_ij w_ij, [n i+3] = sum_j (du_i/dt)_ij w_ij, with_forces: [n i+4..n i+6] =
-// sum_j F_ij, [n i+7] = sum_j (du_i/dt)_ij (nsum_ of them sent: 8 with the forces, else 4).
+// its own. Per owned atom (with the ghosts' parts), at sums_[SUM_STRIDE i]: sum_j F_ij w_ij (3),
+// sum_j (du_i/dt)_ij w_ij; then a closing: sum_j F_ij, sum_j (du_i/dt)_ij, sum_j F_ij t_mid,ij
+// (3, the middles of the intervals that close); an opening: per pending slot sum_j F_ij (3)
+// and the close (ticks) of the pairs whose interval ends while the atom sleeps, then
+// (with_forces) sum_j F_ij and sum_j (du_i/dt)_ij at force_off_ (nsum_ values sent).
 // The times the opening sent to the ghosts serve the next closing unless atoms moved between
 // ranks or were reordered (a reneighbouring) or the time line started a new cycle.
 void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_forces)
@@ -503,7 +557,10 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_
     times_opened_ = step;
   }
   times_nall_ = nall;
-  nsum_ = with_forces ? SUM_STRIDE : SUM_KICKS;
+  opening_ = !closing;
+  force_off_ = closing ? SUM_KICKS : SUM_KICKS + SUM_PENDING;
+  const int extra = closing ? 2 * SUM_KICKS : SUM_KICKS;    // middles, or the pending slots
+  nsum_ = closing ? 2 * SUM_KICKS + 3 : SUM_KICKS + SUM_PENDING + (with_forces ? SUM_KICKS : 0);
   // the ghosts' entries are zero between calls; the owned ones of the last call are cleared
   if (sums_.size() < SUM_STRIDE * static_cast<std::size_t>(nall))
     sums_.resize(SUM_STRIDE * static_cast<std::size_t>(nall), 0.0);
@@ -521,22 +578,40 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_
   for (const EvaluatedPairs::Row &row : pairs.rows) {
     const int i = row.i;
     const double *ti = &times_[NTIMES * i];
+    double *si = &sums_[SUM_STRIDE * i];
     const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
-    // impulse and force, then the u kick and du/dt
+    // impulse and force, then the u kick and du/dt; closing: sum_j F_ij t_mid,ij
     double impulse[SUM_KICKS] = {0.0, 0.0, 0.0, 0.0}, force[SUM_KICKS] = {0.0, 0.0, 0.0, 0.0};
+    double middle[3] = {0.0, 0.0, 0.0};
     for (; k < row.end; k++) {
       const int jp = pairs.partner[k], j = jp >= 0 ? jp : ~jp;
       const double fpair = pairs.fpair[k];
       const double f[3] = {(xi - x[j][0]) * fpair, (yi - x[j][1]) * fpair, (zi - x[j][2]) * fpair};
       const double *tj = &times_[NTIMES * j];
-      double w;
+      double w, mid = 0.0;
       if (closing) {
         const double opened = std::max(ti[0], tj[0]);
         const double end_i = ti[2] > opened ? ti[3] : ti[1];
         const double end_j = tj[2] > opened ? tj[3] : tj[1];
-        w = half_tick * (2.0 * ti_next_ - opened - std::min(end_i, end_j));
+        const double close = std::min(end_i, end_j);
+        w = half_tick * (2.0 * ti_next_ - opened - close);
+        mid = half_tick * (opened + close);
+        for (int d = 0; d < 3; d++) middle[d] += mid * f[d];
       } else {
-        w = half_tick * (std::min(ti[1], tj[1]) - ti_now_);
+        // a particle that sleeps through the interval's close keeps the pair's force in the
+        // slot of that close (the prediction's term of its next closing)
+        const double close = std::min(ti[1], tj[1]);
+        w = half_tick * (close - ti_now_);
+        if (ti[1] > close) {
+          double *slot = si + extra + 4 * pending_slot(close);
+          for (int d = 0; d < 3; d++) slot[d] += f[d];
+          slot[3] = close;
+        }
+        if (jp >= 0 && tj[1] > close) {
+          double *slot = &sums_[SUM_STRIDE * j + extra + 4 * pending_slot(close)];
+          for (int d = 0; d < 3; d++) slot[d] -= f[d];
+          slot[3] = close;
+        }
       }
       for (int d = 0; d < 3; d++) {
         impulse[d] += w * f[d];
@@ -555,15 +630,18 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_
       for (int d = 0; d < 3; d++) sj[d] -= w * f[d];
       if (heat) sj[3] += w_u * heat[2 * k + 1];
       if (with_forces) {
-        for (int d = 0; d < 3; d++) sj[SUM_KICKS + d] -= f[d];
-        if (heat) sj[SUM_KICKS + 3] += heat[2 * k + 1];
+        for (int d = 0; d < 3; d++) sj[force_off_ + d] -= f[d];
+        if (heat) sj[force_off_ + 3] += heat[2 * k + 1];
       }
+      if (closing)
+        for (int d = 0; d < 3; d++) sj[extra + d] -= mid * f[d];
       touch(j, nlocal);
     }
-    double *si = &sums_[SUM_STRIDE * i];
     for (int d = 0; d < SUM_KICKS; d++) si[d] += impulse[d];
     if (with_forces)
-      for (int d = 0; d < SUM_KICKS; d++) si[SUM_KICKS + d] += force[d];
+      for (int d = 0; d < SUM_KICKS; d++) si[force_off_ + d] += force[d];
+    if (closing)
+      for (int d = 0; d < 3; d++) si[extra + d] += middle[d];
     touch(i, nlocal);
   }
   comm_ = Comm::SUMS;
@@ -573,6 +651,27 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_
     touched_mark_[g] = 0;
   }
   touched_.clear();
+}
+
+// after an opening: each owned atom keeps the forces of the pairs whose close it sleeps through,
+// by the time of that close (a slot already holding another close, which does not happen
+// while the pairs of an atom span at most PENDING_SLOTS bins, adds to it)
+void IndividualSteps::keep_pending()
+{
+  if (!pair_kicks_) return;
+  double **pending = atom->darray[idx_.pending];
+  for (int i : touched_owned_) {
+    const double *sum = &sums_[SUM_STRIDE * static_cast<std::size_t>(i)] + SUM_KICKS;
+    double *pend = pending[i];
+    for (int slot = 0; slot < PENDING_SLOTS; slot++, sum += 4, pend += PENDING_VALUES) {
+      if (!(sum[3] > 0.0)) continue;
+      if (!(pend[0] > 0.0)) {
+        pend[0] = sum[3];
+        pend[1] = 0.5 * (ti_now_ + sum[3]);
+      }
+      for (int d = 0; d < 3; d++) pend[2 + d] += sum[d];
+    }
+  }
 }
 
 const double *IndividualSteps::pair_sums(int i) const
@@ -629,6 +728,20 @@ void IndividualSteps::advance_to_next()
       if (woken[i] >= 0.0) woken[i] -= cycle;
     }
     ti_now_ -= cycle;
+    if (pair_kicks_) {
+      double **pending = atom->darray[idx_.pending];
+      double **recent = atom->darray[idx_.recent];
+      const double shift = cycle * tick();
+      for (int i = 0; i < nlocal; i++) {
+        double *pend = pending[i];
+        for (int slot = 0; slot < PENDING_SLOTS; slot++, pend += PENDING_VALUES)
+          if (pend[0] > 0.0) {
+            pend[0] -= cycle;
+            pend[1] -= cycle;
+          }
+        for (int d = 0; d < 3; d++) recent[i][3 + d] -= recent[i][d] * shift;
+      }
+    }
   }
   double first_local = INFINITY;
   for (int i = 0; i < nlocal; i++)
@@ -791,6 +904,11 @@ void IndividualSteps::unpack_reverse_comm(int n, const int *list, const double *
       const int i = list[k];
       double *sum = &sums_[SUM_STRIDE * static_cast<std::size_t>(i)];
       for (int c = 0; c < nsum_; c++) sum[c] += in[c];
+      if (opening_)    // (a pending slot's close is the same time from every part, or 0)
+        for (int slot = 0; slot < PENDING_SLOTS; slot++) {
+          const int c = SUM_KICKS + 4 * slot + 3;
+          sum[c] = std::max(sum[c] - in[c], in[c]);
+        }
       touch(i, nlocal);    // (a ghost that a later swap passes on)
     });
     return;

@@ -151,7 +151,9 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   LAMMPS_NS::bigint bins_sent_step_ = -1;    // the step of the last send (-1: none this run)
   int bins_nall_ = 0;                        // owned + ghost atoms then
   std::vector<double> times_, sums_;         // owned and ghost times, pair sums (pair_impulses)
-  int nsum_ = 6;                             // sums_ used per atom: impulses, and forces if 6
+  int nsum_ = 4;                             // sums_ sent per atom (pair_impulses)
+  int force_off_ = 4;                        // where sum_j F_ij and du/dt are in an atom's sums
+  bool opening_ = false;                     // the sums are those of an opening
   std::vector<int> touched_;                 // ghosts with pair sums: only they are sent
   std::vector<int> touched_owned_;           // owned atoms with pair sums (of the last call)
   std::vector<char> touched_mark_;
@@ -181,6 +183,7 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   // owned atom i's sums of the last pair_impulses() (zeros for an atom in no pair, or with
   // kicks particle)
   const double *pair_sums(int i) const;
+  void keep_pending();
   void send_times(bool changed_only);
   void send_bins();
   void touch(int i, int nlocal)

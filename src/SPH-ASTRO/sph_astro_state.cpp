@@ -154,7 +154,11 @@ bool find_step_state(LAMMPS *lmp, StepIndex &idx)
   idx.kick = lmp->atom->find_custom("step_kick", flag, cols);
   if (idx.kick < 0 || flag != 1 || cols != 3) return false;
   idx.pair_lead = lmp->atom->find_custom("step_pair_lead", flag, cols);
-  return idx.pair_lead >= 0 && flag == 1 && cols == 3;
+  if (idx.pair_lead < 0 || flag != 1 || cols != 3) return false;
+  idx.pending = lmp->atom->find_custom("step_pending", flag, cols);
+  if (idx.pending < 0 || flag != 1 || cols != PENDING_SLOTS * PENDING_VALUES) return false;
+  idx.recent = lmp->atom->find_custom("step_recent", flag, cols);
+  return idx.recent >= 0 && flag == 1 && cols == RECENT_VALUES;
 }
 
 void ensure_step_state(LAMMPS *lmp, const char *caller)
@@ -178,7 +182,9 @@ void ensure_step_state(LAMMPS *lmp, const char *caller)
                        "d_step_end_then d2_step_accel 3 "
                        "d2_step_accel_other 3 d2_step_kick 3 d2_step_pair_lead 3 d_step_dudt "
                        "d_step_divv d_step_omega d_step_balsara d_step_nneigh d_step_kick_u "
-                       "d_step_lead_u d_step_dudt_other");
+                       "d_step_lead_u d_step_dudt_other d2_step_pending " +
+                       std::to_string(PENDING_SLOTS * PENDING_VALUES) + " d2_step_recent " +
+                       std::to_string(RECENT_VALUES));
 }
 
 void clear_state(LAMMPS *lmp, int i)
@@ -211,8 +217,8 @@ void clear_state(LAMMPS *lmp, int i)
     const int index = atom->find_custom(name, flag, cols);
     if (index >= 0 && flag == 1 && cols == 0) atom->dvector[index][i] = 0.0;
   }
-  for (const char *name :
-       {"vest", "step_accel", "step_accel_other", "step_kick", "step_pair_lead"}) {
+  for (const char *name : {"vest", "step_accel", "step_accel_other", "step_kick", "step_pair_lead",
+                           "step_pending", "step_recent"}) {
     const int index = atom->find_custom(name, flag, cols);
     if (index >= 0 && flag == 1 && cols > 0)
       for (int c = 0; c < cols; c++) atom->darray[index][i][c] = 0.0;

@@ -101,11 +101,21 @@ bool find_continuity_state(LAMMPS_NS::LAMMPS *lmp, ContinuityIndex &idx);
 //                              the same as d2_step_kick, d2_step_pair_lead, d2_step_accel_other
 //                              for u: kicks pair integrates pair sph/astro's du/dt terms pair
 //                              by pair too
+//   d2_step_pending 20         kicks pair, a sleeping particle: its pairs with particles on
+//                              shorter steps, by the time their interval closes (up to 4 such
+//                              times, PENDING_SLOTS): per time the close (ticks, 0: none), the
+//                              interval's middle (ticks) and sum_j F_ij of their opening
+//   d2_step_recent 6           kicks pair, a sleeping particle: the prediction's term for the
+//                              forces of its pairs evaluated since its own evaluation,
+//                              sum (F_ij,new - F_ij,old) (t - t_mid,ij) / m = s t - c: s, c (3 each)
+constexpr int PENDING_SLOTS = 4;
+constexpr int PENDING_VALUES = 5;    // close, middle, F (3)
+constexpr int RECENT_VALUES = 6;
 constexpr const char *STEPS_FIX_ID = "SPH_ASTRO_STEPS";
 struct StepIndex {
   int begin = -1, end = -1, bin = -1, woken = -1, end_then = -1, accel = -1, accel_other = -1,
       kick = -1, pair_lead = -1, dudt = -1, divv = -1, omega = -1, balsara = -1, nneigh = -1,
-      kick_u = -1, lead_u = -1, dudt_other = -1;
+      kick_u = -1, lead_u = -1, dudt_other = -1, pending = -1, recent = -1;
 };
 void ensure_step_state(LAMMPS_NS::LAMMPS *lmp, const char *caller);
 
