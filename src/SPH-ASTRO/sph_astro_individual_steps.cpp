@@ -32,14 +32,14 @@ namespace SPHAstro {
 
 namespace {
   constexpr int NTIMES = 4;    // per-atom times of pair_impulses(): begin, end, woken, end_then
-  // sums_ per atom (pair_impulses): impulses and u kick (SUM_KICKS); with the forces the
-  // next SUM_KICKS: sum_j F_ij and du/dt; a closing: then sum_j F_ij t_mid,ij of the
-  // intervals that close (3, time); an opening: per pending slot, sum_j F_ij of the pairs
-  // whose close the atom sleeps through and that close (ticks) (4 per slot)
+  // sums_ per atom (pair_impulses): impulses and u kick (SUM_KICKS), with the forces the next
+  // SUM_KICKS: sum_j F_ij and du/dt. extra_ per atom that sleeps through a pair's close: a
+  // closing's sum_j F_ij t_mid,ij (3, time), an opening's sum_j F_ij (3) and the close (ticks)
+  // per pending slot
   constexpr int SUM_KICKS = 4;
-  constexpr int SUM_PENDING = 4 * PENDING_SLOTS;
-  constexpr int SUM_STRIDE = 2 * SUM_KICKS + SUM_PENDING;
-  const double NO_PAIR_KICKS[SUM_STRIDE] = {0.0};    // kicks particle
+  constexpr int SUM_STRIDE = 2 * SUM_KICKS;
+  constexpr int EXTRA_STRIDE = 4 * PENDING_SLOTS;
+  const double NO_PAIR_KICKS[EXTRA_STRIDE] = {0.0};    // kicks particle
 
   // the slot of a pending close time t (ticks, > 0): the close times a sleeping particle's pairs
   // are waiting for are each the next point after now of a bin's grid, so the coarsest bin
@@ -165,6 +165,7 @@ void IndividualSteps::start(const std::vector<double> &wanted, double dtmax, dou
   for (int i = 0; i < nlocal; i++) {    // a new hierarchy: no pair is pending
     std::fill_n(atom->darray[idx_.pending][i], PENDING_SLOTS * PENDING_VALUES, 0.0);
     std::fill_n(atom->darray[idx_.recent][i], RECENT_VALUES, 0.0);
+    atom->dvector[idx_.pending_next][i] = 0.0;
   }
   pair_impulses(pair, false, true);
   keep_pending();
@@ -180,7 +181,7 @@ void IndividualSteps::start(const std::vector<double> &wanted, double dtmax, dou
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
     const double *sum = pair_sums(i);
-    const double *rate = sum + force_off_;
+    const double *rate = sum + SUM_KICKS;
     const double half = 0.5 * (end[i] - begin[i]) * tick();
     for (int d = 0; d < 3; d++) {
       accel_other[i][d] = (f[i][d] - rate[d]) / m;
@@ -307,6 +308,7 @@ void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
   double *lead_u = atom->dvector[idx_.lead_u];
   double **pending = atom->darray[idx_.pending];
   double **recent = atom->darray[idx_.recent];
+  double *pending_next = atom->dvector[idx_.pending_next];
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
@@ -320,20 +322,27 @@ void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
       for (int d = 0; d < 3; d++) lead[i][d] -= sum[d] / m;
       lead_u[i] -= sum[3];
       dudt[i] = dudt_kept[i];
-      if (pair_kicks_) {
+      const bool closes = pending_next[i] > 0.0 && pending_next[i] <= ti_next_;
+      if (pair_kicks_ && (closes || extra_mark_[i])) {
         // the pairs that close now replace their opening's force in the prediction: the
         // pending slots of this close (and of earlier ones: pairs with a woken partner)
         double old_force[3] = {0.0, 0.0, 0.0}, old_middle[3] = {0.0, 0.0, 0.0};
         double *pend = pending[i];
-        for (int slot = 0; slot < PENDING_SLOTS; slot++, pend += PENDING_VALUES) {
-          if (!(pend[0] > 0.0 && pend[0] <= ti_next_)) continue;
+        double next = 0.0;
+        for (int slot = 0; closes && slot < PENDING_SLOTS; slot++, pend += PENDING_VALUES) {
+          if (!(pend[0] > 0.0)) continue;
+          if (pend[0] > ti_next_) {
+            next = next > 0.0 ? std::min(next, pend[0]) : pend[0];
+            continue;
+          }
           for (int d = 0; d < 3; d++) {
             old_force[d] += pend[2 + d];
             old_middle[d] += pend[1] * t * pend[2 + d];
           }
           std::fill_n(pend, PENDING_VALUES, 0.0);
         }
-        const double *middle = sum + 2 * SUM_KICKS;
+        if (closes) pending_next[i] = next;
+        const double *middle = extra_sums(i);
         for (int d = 0; d < 3; d++) {
           recent[i][d] += (rate[d] - old_force[d]) / m;
           recent[i][3 + d] += (middle[d] - old_middle[d]) / m;
@@ -341,7 +350,8 @@ void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
       }
       for (int d = 0; d < 3; d++) f[i][d] = m * accel[i][d];
     } else {
-      std::fill_n(pending[i], PENDING_SLOTS * PENDING_VALUES, 0.0);
+      if (pending_next[i] > 0.0) std::fill_n(pending[i], PENDING_SLOTS * PENDING_VALUES, 0.0);
+      pending_next[i] = 0.0;
       std::fill_n(recent[i], RECENT_VALUES, 0.0);
       for (int d = 0; d < 3; d++) {
         accel[i][d] = f[i][d] / m;
@@ -532,11 +542,12 @@ void IndividualSteps::limit(PairSPHAstro *pair)
 // with t_o = max(begin_i, begin_j) and w_o from the ends the atoms had at t_o (an atom the
 // limiter woke after t_o had d_step_end_then): w = w_o unless a wake shortened the interval.
 // The pair's du/dt terms (EvaluatedPairs::heat) are integrated in the same way, each atom's
-// its own. Per owned atom (with the ghosts' parts), at sums_[SUM_STRIDE i]: sum_j F_ij w_ij (3),
-// sum_j (du_i/dt)_ij w_ij; then a closing: sum_j F_ij, sum_j (du_i/dt)_ij, sum_j F_ij t_mid,ij
-// (3, the middles of the intervals that close); an opening: per pending slot sum_j F_ij (3)
-// and the close (ticks) of the pairs whose interval ends while the atom sleeps, then
-// (with_forces) sum_j F_ij and sum_j (du_i/dt)_ij at force_off_ (nsum_ values sent).
+// its own. Per owned atom (with the ghosts' parts), n = SUM_STRIDE: sums_[n i..n i+2] =
+// sum_j F_ij w_ij, [n i+3] = sum_j (du_i/dt)_ij w_ij, with_forces: [n i+4..n i+6] =
+// sum_j F_ij, [n i+7] = sum_j (du_i/dt)_ij (nsum_ of them sent: 8 with the forces, else 4).
+// An atom that sleeps through the close of a pair's interval also gets (extra_, extra_width_
+// values sent): a closing's sum_j F_ij t_mid,ij of the intervals that close, an opening's
+// sum_j F_ij per pending slot with the close (its prediction's terms, final_kick, keep_pending).
 // The times the opening sent to the ghosts serve the next closing unless atoms moved between
 // ranks or were reordered (a reneighbouring) or the time line started a new cycle.
 void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_forces)
@@ -557,17 +568,26 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_
     times_opened_ = step;
   }
   times_nall_ = nall;
+  const int written = extra_width_;    // (the width of the last call's extra sums)
   opening_ = !closing;
-  force_off_ = closing ? SUM_KICKS : SUM_KICKS + SUM_PENDING;
-  const int extra = closing ? 2 * SUM_KICKS : SUM_KICKS;    // middles, or the pending slots
-  nsum_ = closing ? 2 * SUM_KICKS + 3 : SUM_KICKS + SUM_PENDING + (with_forces ? SUM_KICKS : 0);
+  nsum_ = with_forces ? SUM_STRIDE : SUM_KICKS;
+  extra_width_ = closing ? 3 : EXTRA_STRIDE;
   // the ghosts' entries are zero between calls; the owned ones of the last call are cleared
-  if (sums_.size() < SUM_STRIDE * static_cast<std::size_t>(nall))
+  if (sums_.size() < SUM_STRIDE * static_cast<std::size_t>(nall)) {
     sums_.resize(SUM_STRIDE * static_cast<std::size_t>(nall), 0.0);
-  if (touched_mark_.size() < static_cast<std::size_t>(nall)) touched_mark_.resize(nall, 0);
+    extra_.resize(EXTRA_STRIDE * static_cast<std::size_t>(nall), 0.0);
+  }
+  if (touched_mark_.size() < static_cast<std::size_t>(nall)) {
+    touched_mark_.resize(nall, 0);
+    extra_mark_.resize(nall, 0);
+  }
   for (int i : touched_owned_) {    // (slots: atoms may have moved since)
     std::fill_n(&sums_[SUM_STRIDE * static_cast<std::size_t>(i)], SUM_STRIDE, 0.0);
     touched_mark_[i] = 0;
+    if (extra_mark_[i]) {
+      std::fill_n(&extra_[EXTRA_STRIDE * static_cast<std::size_t>(i)], written, 0.0);
+      extra_mark_[i] = 0;
+    }
   }
   touched_owned_.clear();
   const double half_tick = 0.5 * tick();
@@ -578,7 +598,7 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_
   for (const EvaluatedPairs::Row &row : pairs.rows) {
     const int i = row.i;
     const double *ti = &times_[NTIMES * i];
-    double *si = &sums_[SUM_STRIDE * i];
+    const bool i_sleeps = !active_[i];
     const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
     // impulse and force, then the u kick and du/dt; closing: sum_j F_ij t_mid,ij
     double impulse[SUM_KICKS] = {0.0, 0.0, 0.0, 0.0}, force[SUM_KICKS] = {0.0, 0.0, 0.0, 0.0};
@@ -596,21 +616,24 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_
         const double close = std::min(end_i, end_j);
         w = half_tick * (2.0 * ti_next_ - opened - close);
         mid = half_tick * (opened + close);
-        for (int d = 0; d < 3; d++) middle[d] += mid * f[d];
+        if (i_sleeps)
+          for (int d = 0; d < 3; d++) middle[d] += mid * f[d];
       } else {
         // a particle that sleeps through the interval's close keeps the pair's force in the
         // slot of that close (the prediction's term of its next closing)
         const double close = std::min(ti[1], tj[1]);
         w = half_tick * (close - ti_now_);
         if (ti[1] > close) {
-          double *slot = si + extra + 4 * pending_slot(close);
+          double *slot = &extra_[EXTRA_STRIDE * i + 4 * pending_slot(close)];
           for (int d = 0; d < 3; d++) slot[d] += f[d];
           slot[3] = close;
+          extra_mark_[i] = 1;
         }
         if (jp >= 0 && tj[1] > close) {
-          double *slot = &sums_[SUM_STRIDE * j + extra + 4 * pending_slot(close)];
+          double *slot = &extra_[EXTRA_STRIDE * j + 4 * pending_slot(close)];
           for (int d = 0; d < 3; d++) slot[d] -= f[d];
           slot[3] = close;
+          extra_mark_[j] = 1;
         }
       }
       for (int d = 0; d < 3; d++) {
@@ -630,25 +653,36 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_
       for (int d = 0; d < 3; d++) sj[d] -= w * f[d];
       if (heat) sj[3] += w_u * heat[2 * k + 1];
       if (with_forces) {
-        for (int d = 0; d < 3; d++) sj[force_off_ + d] -= f[d];
-        if (heat) sj[force_off_ + 3] += heat[2 * k + 1];
+        for (int d = 0; d < 3; d++) sj[SUM_KICKS + d] -= f[d];
+        if (heat) sj[SUM_KICKS + 3] += heat[2 * k + 1];
       }
-      if (closing)
-        for (int d = 0; d < 3; d++) sj[extra + d] -= mid * f[d];
+      if (closing && !active_[j]) {
+        double *ej = &extra_[EXTRA_STRIDE * j];
+        for (int d = 0; d < 3; d++) ej[d] -= mid * f[d];
+        extra_mark_[j] = 1;
+      }
       touch(j, nlocal);
     }
+    double *si = &sums_[SUM_STRIDE * i];
     for (int d = 0; d < SUM_KICKS; d++) si[d] += impulse[d];
     if (with_forces)
-      for (int d = 0; d < SUM_KICKS; d++) si[force_off_ + d] += force[d];
-    if (closing)
-      for (int d = 0; d < 3; d++) si[extra + d] += middle[d];
+      for (int d = 0; d < SUM_KICKS; d++) si[SUM_KICKS + d] += force[d];
+    if (closing && i_sleeps) {
+      double *ei = &extra_[EXTRA_STRIDE * i];
+      for (int d = 0; d < 3; d++) ei[d] += middle[d];
+      extra_mark_[i] = 1;
+    }
     touch(i, nlocal);
   }
   comm_ = Comm::SUMS;
-  comm->reverse_comm(owner_, SUM_STRIDE + 2);
+  comm->reverse_comm(owner_, SUM_STRIDE + EXTRA_STRIDE + 3);
   for (int g : touched_) {
-    std::fill_n(&sums_[SUM_STRIDE * static_cast<std::size_t>(g)], SUM_STRIDE, 0.0);
+    std::fill_n(&sums_[SUM_STRIDE * static_cast<std::size_t>(g)], nsum_, 0.0);
     touched_mark_[g] = 0;
+    if (extra_mark_[g]) {
+      std::fill_n(&extra_[EXTRA_STRIDE * static_cast<std::size_t>(g)], extra_width_, 0.0);
+      extra_mark_[g] = 0;
+    }
   }
   touched_.clear();
 }
@@ -660,8 +694,10 @@ void IndividualSteps::keep_pending()
 {
   if (!pair_kicks_) return;
   double **pending = atom->darray[idx_.pending];
+  double *pending_next = atom->dvector[idx_.pending_next];
   for (int i : touched_owned_) {
-    const double *sum = &sums_[SUM_STRIDE * static_cast<std::size_t>(i)] + SUM_KICKS;
+    if (!extra_mark_[i]) continue;
+    const double *sum = extra_sums(i);
     double *pend = pending[i];
     for (int slot = 0; slot < PENDING_SLOTS; slot++, sum += 4, pend += PENDING_VALUES) {
       if (!(sum[3] > 0.0)) continue;
@@ -670,8 +706,15 @@ void IndividualSteps::keep_pending()
         pend[1] = 0.5 * (ti_now_ + sum[3]);
       }
       for (int d = 0; d < 3; d++) pend[2 + d] += sum[d];
+      if (!(pending_next[i] > 0.0) || pend[0] < pending_next[i]) pending_next[i] = pend[0];
     }
   }
+}
+
+const double *IndividualSteps::extra_sums(int i) const
+{
+  return (pair_kicks_ && extra_mark_[i]) ? &extra_[EXTRA_STRIDE * static_cast<std::size_t>(i)]
+                                         : NO_PAIR_KICKS;
 }
 
 const double *IndividualSteps::pair_sums(int i) const
@@ -732,6 +775,7 @@ void IndividualSteps::advance_to_next()
       double **pending = atom->darray[idx_.pending];
       double **recent = atom->darray[idx_.recent];
       const double shift = cycle * tick();
+      double *pending_next = atom->dvector[idx_.pending_next];
       for (int i = 0; i < nlocal; i++) {
         double *pend = pending[i];
         for (int slot = 0; slot < PENDING_SLOTS; slot++, pend += PENDING_VALUES)
@@ -739,6 +783,7 @@ void IndividualSteps::advance_to_next()
             pend[0] -= cycle;
             pend[1] -= cycle;
           }
+        if (pending_next[i] > 0.0) pending_next[i] -= cycle;
         for (int d = 0; d < 3; d++) recent[i][3 + d] -= recent[i][d] * shift;
       }
     }
@@ -877,15 +922,22 @@ void IndividualSteps::unpack_forward_comm(int n, int first, const double *buf)
 
 int IndividualSteps::pack_reverse_comm(int n, int first, double *buf)
 {
-  if (comm_ == Comm::SUMS)    // the ghosts with pairs only
-    return pack_sparse(
-        n, nsum_, buf,
-        [&](int k) {
-          return touched_mark_[first + k] != 0;
-        },
-        [&](int k, double *out) {
-          std::copy_n(&sums_[SUM_STRIDE * static_cast<std::size_t>(first + k)], nsum_, out);
-        });
+  if (comm_ == Comm::SUMS) {    // the ghosts with pairs only: k + n (0, or 1 with the extra)
+    if (n == 0) return 0;       // (sph_astro_sparse_message.h)
+    double *out = buf + 1;
+    int count = 0;
+    for (int k = 0; k < n; k++) {
+      const int i = first + k;
+      if (!touched_mark_[i]) continue;
+      *out++ = k + (extra_mark_[i] ? n : 0);
+      out = std::copy_n(&sums_[SUM_STRIDE * static_cast<std::size_t>(i)], nsum_, out);
+      if (extra_mark_[i])
+        out = std::copy_n(&extra_[EXTRA_STRIDE * static_cast<std::size_t>(i)], extra_width_, out);
+      count++;
+    }
+    buf[0] = count;
+    return static_cast<int>(out - buf);
+  }
   return pack_sparse(    // REQUIRED: the ghosts in a pair (a bin, not the -1 of none)
       n, 1, buf,
       [&](int k) {
@@ -899,18 +951,30 @@ int IndividualSteps::pack_reverse_comm(int n, int first, double *buf)
 void IndividualSteps::unpack_reverse_comm(int n, const int *list, const double *buf)
 {
   if (comm_ == Comm::SUMS) {
+    if (n == 0) return;
     const int nlocal = atom->nlocal;
-    unpack_sparse(n, nsum_, buf, [&](int k, const double *in) {
+    const int count = static_cast<int>(buf[0]);
+    const double *in = buf + 1;
+    for (int e = 0; e < count; e++) {
+      int k = static_cast<int>(*in++);
+      const bool extra = k >= n;
+      if (extra) k -= n;
       const int i = list[k];
       double *sum = &sums_[SUM_STRIDE * static_cast<std::size_t>(i)];
-      for (int c = 0; c < nsum_; c++) sum[c] += in[c];
-      if (opening_)    // (a pending slot's close is the same time from every part, or 0)
-        for (int slot = 0; slot < PENDING_SLOTS; slot++) {
-          const int c = SUM_KICKS + 4 * slot + 3;
-          sum[c] = std::max(sum[c] - in[c], in[c]);
-        }
+      for (int c = 0; c < nsum_; c++) sum[c] += *in++;
       touch(i, nlocal);    // (a ghost that a later swap passes on)
-    });
+      if (!extra) continue;
+      double *ext = &extra_[EXTRA_STRIDE * static_cast<std::size_t>(i)];
+      for (int c = 0; c < extra_width_; c++) {
+        // (a pending slot's close is the same time from every part, or 0)
+        if (opening_ && c % 4 == 3)
+          ext[c] = std::max(ext[c], in[c]);
+        else
+          ext[c] += in[c];
+      }
+      in += extra_width_;
+      extra_mark_[i] = 1;
+    }
     return;
   }
   unpack_sparse(n, 1, buf, [&](int k, const double *in) {

@@ -152,7 +152,9 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   int bins_nall_ = 0;                        // owned + ghost atoms then
   std::vector<double> times_, sums_;         // owned and ghost times, pair sums (pair_impulses)
   int nsum_ = 4;                             // sums_ sent per atom (pair_impulses)
-  int force_off_ = 4;                        // where sum_j F_ij and du/dt are in an atom's sums
+  std::vector<double> extra_;                // owned and ghost: the prediction's pair sums
+  std::vector<char> extra_mark_;             // atoms with extra_ of the last call
+  int extra_width_ = 3;                      // extra_ used per atom then
   bool opening_ = false;                     // the sums are those of an opening
   std::vector<int> touched_;                 // ghosts with pair sums: only they are sent
   std::vector<int> touched_owned_;           // owned atoms with pair sums (of the last call)
@@ -183,6 +185,8 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   // owned atom i's sums of the last pair_impulses() (zeros for an atom in no pair, or with
   // kicks particle)
   const double *pair_sums(int i) const;
+  // owned atom i's prediction sums of the last pair_impulses() (zeros if none)
+  const double *extra_sums(int i) const;
   void keep_pending();
   void send_times(bool changed_only);
   void send_bins();

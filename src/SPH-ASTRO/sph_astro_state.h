@@ -105,6 +105,7 @@ bool find_continuity_state(LAMMPS_NS::LAMMPS *lmp, ContinuityIndex &idx);
 //                              shorter steps, by the time their interval closes (up to 4 such
 //                              times, PENDING_SLOTS): per time the close (ticks, 0: none), the
 //                              interval's middle (ticks) and sum_j F_ij of their opening
+//   d_step_pending_next        the earliest of these closes (0: none)
 //   d2_step_recent 6           kicks pair, a sleeping particle: the prediction's term for the
 //                              forces of its pairs evaluated since its own evaluation,
 //                              sum (F_ij,new - F_ij,old) (t - t_mid,ij) / m = s t - c: s, c (3 each)
@@ -115,7 +116,7 @@ constexpr const char *STEPS_FIX_ID = "SPH_ASTRO_STEPS";
 struct StepIndex {
   int begin = -1, end = -1, bin = -1, woken = -1, end_then = -1, accel = -1, accel_other = -1,
       kick = -1, pair_lead = -1, dudt = -1, divv = -1, omega = -1, balsara = -1, nneigh = -1,
-      kick_u = -1, lead_u = -1, dudt_other = -1, pending = -1, recent = -1;
+      kick_u = -1, lead_u = -1, dudt_other = -1, pending = -1, recent = -1, pending_next = -1;
 };
 void ensure_step_state(LAMMPS_NS::LAMMPS *lmp, const char *caller);
 
