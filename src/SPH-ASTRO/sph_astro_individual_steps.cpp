@@ -323,7 +323,7 @@ void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
       lead_u[i] -= sum[3];
       dudt[i] = dudt_kept[i];
       const bool closes = pending_next[i] > 0.0 && pending_next[i] <= ti_next_;
-      if (pair_kicks_ && (closes || extra_mark_[i])) {
+      if (pair_kicks_ && (closes || extra_at_[i] >= 0)) {
         // the pairs that close now replace their opening's force in the prediction: the
         // pending slots of this close (and of earlier ones: pairs with a woken partner)
         double old_force[3] = {0.0, 0.0, 0.0}, old_middle[3] = {0.0, 0.0, 0.0};
@@ -568,27 +568,23 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_
     times_opened_ = step;
   }
   times_nall_ = nall;
-  const int written = extra_width_;    // (the width of the last call's extra sums)
   opening_ = !closing;
   nsum_ = with_forces ? SUM_STRIDE : SUM_KICKS;
   extra_width_ = closing ? 3 : EXTRA_STRIDE;
   // the ghosts' entries are zero between calls; the owned ones of the last call are cleared
   if (sums_.size() < SUM_STRIDE * static_cast<std::size_t>(nall)) {
     sums_.resize(SUM_STRIDE * static_cast<std::size_t>(nall), 0.0);
-    extra_.resize(EXTRA_STRIDE * static_cast<std::size_t>(nall), 0.0);
   }
   if (touched_mark_.size() < static_cast<std::size_t>(nall)) {
     touched_mark_.resize(nall, 0);
-    extra_mark_.resize(nall, 0);
+    extra_at_.resize(nall, -1);
   }
   for (int i : touched_owned_) {    // (slots: atoms may have moved since)
     std::fill_n(&sums_[SUM_STRIDE * static_cast<std::size_t>(i)], SUM_STRIDE, 0.0);
     touched_mark_[i] = 0;
-    if (extra_mark_[i]) {
-      std::fill_n(&extra_[EXTRA_STRIDE * static_cast<std::size_t>(i)], written, 0.0);
-      extra_mark_[i] = 0;
-    }
+    extra_at_[i] = -1;
   }
+  extra_.clear();
   touched_owned_.clear();
   const double half_tick = 0.5 * tick();
   double **x = atom->x;    // (those of the force evaluation: no drift since)
@@ -624,16 +620,14 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_
         const double close = std::min(ti[1], tj[1]);
         w = half_tick * (close - ti_now_);
         if (ti[1] > close) {
-          double *slot = &extra_[EXTRA_STRIDE * i + 4 * pending_slot(close)];
+          double *slot = extra_of(i) + 4 * pending_slot(close);
           for (int d = 0; d < 3; d++) slot[d] += f[d];
           slot[3] = close;
-          extra_mark_[i] = 1;
         }
         if (jp >= 0 && tj[1] > close) {
-          double *slot = &extra_[EXTRA_STRIDE * j + 4 * pending_slot(close)];
+          double *slot = extra_of(j) + 4 * pending_slot(close);
           for (int d = 0; d < 3; d++) slot[d] -= f[d];
           slot[3] = close;
-          extra_mark_[j] = 1;
         }
       }
       for (int d = 0; d < 3; d++) {
@@ -657,9 +651,8 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_
         if (heat) sj[SUM_KICKS + 3] += heat[2 * k + 1];
       }
       if (closing && !active_[j]) {
-        double *ej = &extra_[EXTRA_STRIDE * j];
+        double *ej = extra_of(j);
         for (int d = 0; d < 3; d++) ej[d] -= mid * f[d];
-        extra_mark_[j] = 1;
       }
       touch(j, nlocal);
     }
@@ -668,9 +661,8 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_
     if (with_forces)
       for (int d = 0; d < SUM_KICKS; d++) si[SUM_KICKS + d] += force[d];
     if (closing && i_sleeps) {
-      double *ei = &extra_[EXTRA_STRIDE * i];
+      double *ei = extra_of(i);
       for (int d = 0; d < 3; d++) ei[d] += middle[d];
-      extra_mark_[i] = 1;
     }
     touch(i, nlocal);
   }
@@ -679,10 +671,7 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_
   for (int g : touched_) {
     std::fill_n(&sums_[SUM_STRIDE * static_cast<std::size_t>(g)], nsum_, 0.0);
     touched_mark_[g] = 0;
-    if (extra_mark_[g]) {
-      std::fill_n(&extra_[EXTRA_STRIDE * static_cast<std::size_t>(g)], extra_width_, 0.0);
-      extra_mark_[g] = 0;
-    }
+    extra_at_[g] = -1;
   }
   touched_.clear();
 }
@@ -696,7 +685,7 @@ void IndividualSteps::keep_pending()
   double **pending = atom->darray[idx_.pending];
   double *pending_next = atom->dvector[idx_.pending_next];
   for (int i : touched_owned_) {
-    if (!extra_mark_[i]) continue;
+    if (extra_at_[i] < 0) continue;
     const double *sum = extra_sums(i);
     double *pend = pending[i];
     for (int slot = 0; slot < PENDING_SLOTS; slot++, sum += 4, pend += PENDING_VALUES) {
@@ -711,10 +700,20 @@ void IndividualSteps::keep_pending()
   }
 }
 
+double *IndividualSteps::extra_of(int i)
+{
+  if (extra_at_[i] < 0) {
+    extra_at_[i] = static_cast<int>(extra_.size() / EXTRA_STRIDE);
+    extra_.resize(extra_.size() + EXTRA_STRIDE, 0.0);
+  }
+  return &extra_[EXTRA_STRIDE * static_cast<std::size_t>(extra_at_[i])];
+}
+
 const double *IndividualSteps::extra_sums(int i) const
 {
-  return (pair_kicks_ && extra_mark_[i]) ? &extra_[EXTRA_STRIDE * static_cast<std::size_t>(i)]
-                                         : NO_PAIR_KICKS;
+  return (pair_kicks_ && extra_at_[i] >= 0)
+      ? &extra_[EXTRA_STRIDE * static_cast<std::size_t>(extra_at_[i])]
+      : NO_PAIR_KICKS;
 }
 
 const double *IndividualSteps::pair_sums(int i) const
@@ -929,10 +928,9 @@ int IndividualSteps::pack_reverse_comm(int n, int first, double *buf)
     for (int k = 0; k < n; k++) {
       const int i = first + k;
       if (!touched_mark_[i]) continue;
-      *out++ = k + (extra_mark_[i] ? n : 0);
+      *out++ = k + (extra_at_[i] >= 0 ? n : 0);
       out = std::copy_n(&sums_[SUM_STRIDE * static_cast<std::size_t>(i)], nsum_, out);
-      if (extra_mark_[i])
-        out = std::copy_n(&extra_[EXTRA_STRIDE * static_cast<std::size_t>(i)], extra_width_, out);
+      if (extra_at_[i] >= 0) out = std::copy_n(extra_sums(i), extra_width_, out);
       count++;
     }
     buf[0] = count;
@@ -964,7 +962,7 @@ void IndividualSteps::unpack_reverse_comm(int n, const int *list, const double *
       for (int c = 0; c < nsum_; c++) sum[c] += *in++;
       touch(i, nlocal);    // (a ghost that a later swap passes on)
       if (!extra) continue;
-      double *ext = &extra_[EXTRA_STRIDE * static_cast<std::size_t>(i)];
+      double *ext = extra_of(i);
       for (int c = 0; c < extra_width_; c++) {
         // (a pending slot's close is the same time from every part, or 0)
         if (opening_ && c % 4 == 3)
@@ -973,7 +971,6 @@ void IndividualSteps::unpack_reverse_comm(int n, const int *list, const double *
           ext[c] += in[c];
       }
       in += extra_width_;
-      extra_mark_[i] = 1;
     }
     return;
   }

@@ -37,9 +37,12 @@
 // du/dt_other (the rest: conduction, fixes) per particle. A pair on a shorter interval than
 // particle i's step has kicked i up to its own interval's middle t_mid,ij, not t_mid,i: the
 // prediction adds its lead, v_est = v + a (t - t_mid,i) + sum_j F_ij (t_mid,i - t_mid,ij) / m_i
-// (d2_step_pair_lead; for u d_step_lead_u). A pair whose interval a wake shortened closes with
-// the rest of it, w_closing = (t - t_open) - w_opening (for u at least 0: taking back heat at
-// the new rate could make u negative).
+// (d2_step_pair_lead; for u d_step_lead_u). A sleeping particle's pairs re-evaluated since its
+// own evaluation (with active partners) enter its prediction of v with their new forces:
+// + sum (F_ij,new - F_ij,old) (t - t_mid,ij) / m (d2_step_recent; the old forces wait per
+// close time in d2_step_pending). A pair whose interval a wake shortened closes with the rest of
+// it, w_closing = (t - t_open) - w_opening (for u at least 0: taking back heat at the new rate
+// could make u negative).
 // Other forces on inactive particles are computed by LAMMPS every step and not used: an
 // inactive particle keeps a_other of its last evaluation.
 
@@ -152,12 +155,14 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   int bins_nall_ = 0;                        // owned + ghost atoms then
   std::vector<double> times_, sums_;         // owned and ghost times, pair sums (pair_impulses)
   int nsum_ = 4;                             // sums_ sent per atom (pair_impulses)
-  std::vector<double> extra_;                // owned and ghost: the prediction's pair sums
-  std::vector<char> extra_mark_;             // atoms with extra_ of the last call
-  int extra_width_ = 3;                      // extra_ used per atom then
-  bool opening_ = false;                     // the sums are those of an opening
-  std::vector<int> touched_;                 // ghosts with pair sums: only they are sent
-  std::vector<int> touched_owned_;           // owned atoms with pair sums (of the last call)
+  // the prediction's pair sums (pair_impulses) of the atoms that sleep through a pair's close:
+  // atom i's at extra_[EXTRA_STRIDE extra_at_[i]] (extra_at_ -1: none)
+  std::vector<double> extra_;
+  std::vector<int> extra_at_;         // owned and ghost atoms
+  int extra_width_ = 3;               // extra_ used per atom then
+  bool opening_ = false;              // the sums are those of an opening
+  std::vector<int> touched_;          // ghosts with pair sums: only they are sent
+  std::vector<int> touched_owned_;    // owned atoms with pair sums (of the last call)
   std::vector<char> touched_mark_;
   std::vector<char> times_changed_;        // owned and ghost atoms whose times are sent
   LAMMPS_NS::bigint times_opened_ = -1;    // the steps of the last opening and closing whose
@@ -187,6 +192,7 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   const double *pair_sums(int i) const;
   // owned atom i's prediction sums of the last pair_impulses() (zeros if none)
   const double *extra_sums(int i) const;
+  double *extra_of(int i);    // atom i's prediction sums, made (zeros) if it has none
   void keep_pending();
   void send_times(bool changed_only);
   void send_bins();
