@@ -67,6 +67,15 @@ struct PairOptions;
 
 class IndividualSteps : protected LAMMPS_NS::Pointers {
  public:
+  // per atom: the times pair_impulses() reads (begin, end, woken, end_then); sums_: impulses
+  // and u kick (SUM_KICKS), with the forces the next SUM_KICKS: sum_j F_ij and du/dt; extra_
+  // (an atom that sleeps through a pair's close): a closing's sum_j F_ij t_mid,ij (3, time),
+  // an opening's sum_j F_ij (3) and the close (ticks) per pending slot
+  static constexpr int NTIMES = 4;
+  static constexpr int SUM_KICKS = 4;
+  static constexpr int SUM_STRIDE = 2 * SUM_KICKS;
+  static constexpr int EXTRA_STRIDE = 4 * PENDING_SLOTS;
+
   // owner: the fix whose communication and group this uses; levels: the limiter (0: off);
   // pair_kicks: pair forces integrated pair by pair (else each particle's on its own step)
   IndividualSteps(LAMMPS_NS::LAMMPS *lmp, LAMMPS_NS::Fix *owner, int levels, bool pair_kicks);

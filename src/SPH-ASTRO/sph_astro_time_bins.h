@@ -19,6 +19,7 @@
 #define LMP_SPH_ASTRO_TIME_BINS_H
 
 #include <cmath>
+#include <cstdint>
 
 namespace SPHAstro {
 namespace TimeBins {
@@ -52,6 +53,13 @@ namespace TimeBins {
   inline bool synchronised(double ti, int bin)
   {
     return std::fmod(ti, ticks(bin)) == 0.0;
+  }
+
+  // the coarsest bin whose grid holds time ti (ticks, > 0): the next points after a time of
+  // different bins' grids are told apart by it
+  inline int coarsest_bin(double ti)
+  {
+    return MAX_BIN - __builtin_ctzll(static_cast<std::uint64_t>(ti));
   }
 
   // the bin of a particle that ends a step of bin old_bin at ti and whose criteria ask for
