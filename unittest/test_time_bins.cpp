@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
 #include <set>
 #include <tuple>
@@ -62,6 +63,29 @@ TEST(TimeBins, LongerStepsOnlyWhereTheirGridPasses)
   EXPECT_EQ(TimeBins::wake_end(5 * L3, 3), 6 * L3);
   EXPECT_EQ(TimeBins::wake_end(5 * L3, 1), 8 * L3);
   EXPECT_EQ(TimeBins::wake_end(8 * L3, 1), 12 * L3);
+}
+
+// the coarsest bin whose grid holds a time: the next grid points after a time of different
+// bins (the closes a sleeping particle's pairs wait for) differ in it
+TEST(TimeBins, CoarsestBinTellsNextGridPointsApart)
+{
+  const double L3 = TimeBins::ticks(3);
+  EXPECT_EQ(TimeBins::coarsest_bin(L3), 3);
+  EXPECT_EQ(TimeBins::coarsest_bin(3 * L3), 3);
+  EXPECT_EQ(TimeBins::coarsest_bin(6 * L3), 2);
+  EXPECT_EQ(TimeBins::coarsest_bin(TimeBins::cycle()), 0);
+  EXPECT_EQ(TimeBins::coarsest_bin(1.0), TimeBins::MAX_BIN);
+  // after t = 5 L3 the next points of bins 0..6: equal coarsest bins, equal times
+  const double t = 5 * L3;
+  std::map<int, double> next_of;
+  for (int b = 0; b <= 6; b++) {
+    const double next = TimeBins::wake_end(t, b);
+    const int c = TimeBins::coarsest_bin(next);
+    EXPECT_LE(c, b) << b;
+    auto [it, fresh] = next_of.emplace(c, next);
+    EXPECT_TRUE(fresh || it->second == next) << b;
+  }
+  EXPECT_GE(next_of.size(), 3u);
 }
 
 namespace {
