@@ -1,6 +1,10 @@
 """The Evrard collapse (Evrard 1988, MNRAS 235, 911): the energies of an SPH-ASTRO run from its
 LAMMPS log (examples/evrard/in.evrard: thermo Step Time Dt c_sum[8..12] = kinetic K, thermal U,
 potential W, total E, (E - E0)/|E0|)."""
+import re
+
+_SYNC = re.compile(r"relative energy error at the (\d+) synchronisation points of the run: "
+                   r"largest \|error\| (\S+), at the last (\S+)")
 
 
 def read_log(path):
@@ -40,3 +44,16 @@ def at_time(rows, t, key):
             w = (t - a["Time"]) / (b["Time"] - a["Time"]) if b["Time"] > a["Time"] else 0.0
             return a[key] + w * (b[key] - a[key])
     return None
+
+
+def read_sync_energy(path):
+    """From fix sph/astro's end-of-run line (individual steps): the relative total-energy error
+    at the synchronisation points, the steps at which every particle ends its step, as (largest
+    |error| over all runs, number of points); (None, 0) without that line (global steps, where
+    every step is one: use the thermo rows)."""
+    largest, points = None, 0
+    with open(path) as fh:
+        for m in _SYNC.finditer(fh.read()):
+            points += int(m.group(1))
+            largest = max(largest or 0.0, float(m.group(2)))
+    return largest, points

@@ -45,6 +45,7 @@
 #include "sph_astro_sentinel.h"
 #include "sph_astro_shrink_wrap.h"
 #include "sph_astro_state.h"
+#include "sph_astro_sync_energy.h"
 #include "sph_astro_timestep.h"
 #include "timer.h"
 #include "update.h"
@@ -191,8 +192,10 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
     steps_ = new IndividualSteps(lmp, this, limiter_levels_, pair_kicks_);
     comm_forward = 6;     // step begin, end, woken, end_then of changed atoms, and their index
     comm_reverse = 10;    // pair impulses and forces (and u) of the ghosts with pairs, and index
-    // [5] active particles this step, [6] occupied bins, [7] particle-updates, [8] woken
-    size_vector = 8;
+    // [5] active particles this step, [6] occupied bins, [7] particle-updates, [8] woken,
+    // [9] relative energy error at the latest synchronisation point, [10] largest of the run
+    size_vector = 10;
+    sync_energy_ = new SyncEnergy(lmp);
   }
   if (xsph_eps_ > 0.0) {    // per-atom output: the XSPH velocity correction
     peratom_flag = 1;
@@ -205,6 +208,7 @@ FixSPHAstro::~FixSPHAstro()
 {
   memory->destroy(xsph_);
   delete steps_;
+  delete sync_energy_;
   delete sentinel_;
   delete state_;
   delete entropy_index_;
@@ -337,7 +341,10 @@ void FixSPHAstro::setup(int /*vflag*/)
   if (steps_) {
     // a continued hierarchy goes on with its next step; a new one starts here, and again at
     // step 1, when the setup forces of all fixes are in
+    sync_energy_->start_run();
     if (!steps_->continuing()) {
+      // a new hierarchy: every particle begins its step here
+      sync_energy_->measure(groupbit, pair_->options().eos, *state_, reference_energy_);
       wanted_steps(true);
       steps_->start(wanted_, dtmax_, tend_ > 0.0 ? tend_ - current_time() : 0.0, pair_, false);
       dt_pending_ = true;
@@ -510,8 +517,11 @@ void FixSPHAstro::end_of_step()
   // (individual steps: the particles that ended their step begin the next one, also at tend,
   // so that the state after the run is that of the time line's current point)
   if (steps_) {
+    if (steps_->synchronised())
+      sync_energy_->measure(groupbit, pair_->options().eos, *state_, reference_energy_);
     wanted_steps(false);
     steps_->end_of_step(wanted_, pair_);
+    if (steps_->synchronised()) sync_energy_->request(update->ntimestep + 1);
   }
   if (tend_ > 0.0 && current_time() >= tend_ * (1.0 - 1e-12)) {
     stopped_at_tend_ = true;
@@ -540,7 +550,8 @@ std::string FixSPHAstro::limits() const
 
 void FixSPHAstro::post_run()
 {
-  if (steps_) steps_->log_summary();    // the hierarchy's figures and its bins
+  if (steps_) steps_->log_summary();                // the hierarchy's figures and its bins
+  if (sync_energy_) sync_energy_->log_summary();    // its energy at synchronisation points
   // a stop at tend ends this run only; later runs get the user's timeout back
   if (stopped_at_tend_) timer->reset_timeout();
   // a fixed step shortened to land on tend is the user's step again
@@ -794,7 +805,8 @@ double FixSPHAstro::compute_vector(int n)
     if (n == 4) return steps_->active_count();
     if (n == 5) return steps_->occupied_bins();
     if (n == 6) return steps_->updates();
-    return steps_->woken_total();
+    if (n == 7) return steps_->woken_total();
+    return n == 8 ? sync_energy_->latest() : sync_energy_->largest();
   }
   const double values[4] = {last_dt_cv_, last_dt_force_, last_dt_energy_, last_dt_cond_};
   return values[n];

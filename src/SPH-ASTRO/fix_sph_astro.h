@@ -27,6 +27,7 @@ struct EntropyIndex;
 struct ContinuityIndex;
 class IndividualSteps;
 class StabilitySentinel;
+class SyncEnergy;
 }    // namespace SPHAstro
 
 namespace LAMMPS_NS {
@@ -133,6 +134,7 @@ class FixSPHAstro : public Fix {
 
   // individual timesteps (steps individual; sph_astro_individual_steps.h), null: global
   SPHAstro::IndividualSteps *steps_ = nullptr;
+  SPHAstro::SyncEnergy *sync_energy_ = nullptr;    // individual steps: E at synchronisation
   bool pair_kicks_ = true;    // individual steps: pair forces and du/dt integrated pair by pair
   int limiter_levels_ = 1;    // the limiter: no step more than 2^levels x a neighbour's (0: off)
   std::vector<double> wanted_;

@@ -550,11 +550,20 @@ void IndividualSteps::advance_to_next()
       }
     }
   }
-  double first_local = INFINITY;
+  double ends_local[2] = {INFINITY, INFINITY}, ends[2];    // the first and (-) the last end
   for (int i = 0; i < nlocal; i++)
-    if (mask[i] & owner_->groupbit) first_local = std::min(first_local, end[i]);
-  MPI_Allreduce(&first_local, &ti_next_, 1, MPI_DOUBLE, MPI_MIN, world);
-  if (!std::isfinite(ti_next_)) ti_next_ = cycle;    // no particles: one top step
+    if (mask[i] & owner_->groupbit) {
+      ends_local[0] = std::min(ends_local[0], end[i]);
+      ends_local[1] = std::min(ends_local[1], -end[i]);
+    }
+  MPI_Allreduce(ends_local, ends, 2, MPI_DOUBLE, MPI_MIN, world);
+  ti_next_ = std::isfinite(ends[0]) ? ends[0] : cycle;    // no particles: one top step
+  ti_last_ = std::isfinite(ends[1]) ? -ends[1] : cycle;
+}
+
+bool IndividualSteps::synchronised() const
+{
+  return ti_last_ == ti_next_;
 }
 
 int IndividualSteps::occupied_bins(std::vector<double> *histogram) const
@@ -754,6 +763,7 @@ int IndividualSteps::read_restart(const double *list)
   started_ = list[0] != 0.0;
   ti_now_ = list[1];
   ti_next_ = list[2];
+  ti_last_ = -1.0;    // (not kept: the energy is measured again at the next synchronisation)
   dt_max_ = list[3];
   hierarchy_step_ = static_cast<bigint>(list[4]);
   updates_ = list[5];

@@ -87,6 +87,9 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   // it anew (first run, or v, u or the particles changed in between)
   void init(const StateIndex &state, bool state_unchanged);
   bool continuing() const { return continuing_; }
+  // does every particle end its step at the time of the step being taken (from pre_force to
+  // end_of_step; after end_of_step, the next step's)
+  bool synchronised() const;
   // before the setup's force evaluation: all particles active (a new hierarchy) or none
   void setup_pre_force(LAMMPS_NS::PairSPHAstro *pair);
   // a new hierarchy (first step of the run): every particle's acceleration from the setup's
@@ -154,6 +157,7 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   StepIndex idx_;
   bool started_ = false, continuing_ = false;
   double ti_now_ = 0.0, ti_next_ = 0.0;    // ticks: this LAMMPS step's start and end
+  double ti_last_ = -1.0;    // the latest end of a particle's step at ti_now_ (-1: unknown)
   double dt_max_ = 0.0;
   LAMMPS_NS::bigint hierarchy_step_ = -1;    // the step the hierarchy's state belongs to
   std::vector<char> active_;
