@@ -12,6 +12,8 @@
 #ifndef LMP_SPH_ASTRO_EVALUATED_PAIRS_H
 #define LMP_SPH_ASTRO_EVALUATED_PAIRS_H
 
+#include <algorithm>
+#include <cstddef>
 #include <vector>
 
 namespace SPHAstro {
@@ -40,6 +42,18 @@ struct EvaluatedPairs {
     heat.clear();
     forces = with_forces;
     heats = with_forces && with_heats;
+  }
+  // room for the pairs of a list of n entries in nrows rows before the pass (growing within
+  // it would copy the records, pair by pair doubling); grows by at least half
+  void reserve(std::size_t nrows, std::size_t n)
+  {
+    auto room = [](auto &v, std::size_t want) {
+      if (v.capacity() < want) v.reserve(std::max(want, v.capacity() + v.capacity() / 2));
+    };
+    room(rows, nrows);
+    room(partner, n);
+    if (forces) room(fpair, n);
+    if (heats) room(heat, 2 * n);
   }
   // the force pass: one pair of the row of i, then the row's end
   void add(int j, bool update_j, double f, double heat_i, double heat_j)

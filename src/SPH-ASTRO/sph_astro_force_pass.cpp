@@ -181,6 +181,11 @@ void force_pass(const PassContext &ctx, const ForceSettings &s, bool two_h, bool
   const int level = (s.balsara || s.reconstruct || s.pressure != PressureForm::STANDARD) ? FORCE_ALL
       : (s.alpha_per_particle || s.alpha_u > 0.0) ? FORCE_COMMON
                                                   : FORCE_PLAIN;
+  if (ctx.pairs) {    // at most one record per list entry
+    std::size_t entries = 0;
+    for (int ii = 0; ii < ctx.half.inum; ii++) entries += ctx.half.numneigh[ctx.half.ilist[ii]];
+    ctx.pairs->reserve(ctx.half.inum, entries);
+  }
   with_variant(ctx.kernel, ctx.dim, two_h, [&](auto v) {
     using V = decltype(v);
     auto run = [&](auto adapter) {
