@@ -157,7 +157,7 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   StepIndex idx_;
   bool started_ = false, continuing_ = false;
   double ti_now_ = 0.0, ti_next_ = 0.0;    // ticks: this LAMMPS step's start and end
-  double ti_last_ = -1.0;    // the latest end of a particle's step at ti_now_ (-1: unknown)
+  double ti_last_ = -1.0;    // ticks: the latest end of the particles' steps (-1: unknown)
   double dt_max_ = 0.0;
   LAMMPS_NS::bigint hierarchy_step_ = -1;    // the step the hierarchy's state belongs to
   std::vector<char> active_;

@@ -6,7 +6,8 @@
 ------------------------------------------------------------------------- */
 
 // The total energy E = K + U + W of a run with individual timesteps at its synchronisation
-// points, the steps at which every particle ends its step (every point of the top bin's grid).
+// points, the steps at which every particle ends its step (each point of the top bin's grid, and
+// of any finer bin's grid where no particle is in a coarser bin).
 // There v, u and x are each particle's integrated values; between them a particle inside its
 // step enters compute sph/astro/global's sums with its predicted v and u, whose error (of order
 // (da/dt) dt_i^2 for a particle's own step dt_i) is not the integrator's. W is LAMMPS'
@@ -43,7 +44,6 @@ class SyncEnergy : protected LAMMPS_NS::Pointers {
 
   double latest() const { return latest_; }
   double largest() const { return largest_; }
-  LAMMPS_NS::bigint points() const { return points_; }
 
  private:
   // E = sum_i m_i (v_i^2 / 2 + e(rho_i, u_i)) + W over the group at this step; NaN where the
