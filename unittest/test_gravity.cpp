@@ -399,6 +399,33 @@ TEST_P(GravityIndividualSteps, PairsOfInactiveAtomsDoNotChangeTheRun)
 
 INSTANTIATE_TEST_SUITE_P(GravityPair, GravityIndividualSteps, ::testing::Values("direct", "msm"));
 
+// fix sph/astro's energy at the synchronisation points (vector 9) on the collapsing ball: the
+// infall shortens every particle's step, the top bin empties, and the steps at which every
+// particle ends its step lie on finer bins' grids as well. At each of them (run by run: the
+// thermo prints the energy at every step) the fix's value is compute sph/astro/global's
+TEST(GravityPair, IndividualStepsMeasureTheEnergyWhereverEveryParticleEndsItsStep)
+{
+  auto lmp = open_lammps();
+  falling_ball(lmp, "30", "courant 0.3 steps individual tend 0.4");
+  commands(lmp, {"thermo_style custom step c_sum[12] f_gas[9]", "run 1"});    // (E0 at step 0)
+  const double n = static_cast<double>(lmp->atom->natoms);
+  auto *gas = lmp->modify->get_fix_by_id("gas");
+  auto now = [&]() {
+    return lmp->update->atime + (lmp->update->ntimestep - lmp->update->atimestep) * lmp->update->dt;
+  };
+  int points = 0, steps = 1;
+  while (steps < 5000 && now() < 0.4 * (1.0 - 1e-12)) {
+    commands(lmp, {"run 1 pre no post no"});
+    steps++;
+    if (gas->compute_vector(4) != n) continue;    // not every particle active
+    const auto sum = global_vector(lmp, "sum", 12);
+    EXPECT_NEAR(gas->compute_vector(8), sum[11], 1e-12) << "step " << steps;
+    points++;
+  }
+  std::printf("%d synchronisation points in %d steps\n", points, steps);
+  EXPECT_GT(points, 10);
+}
+
 TEST(GravityPair, RestartContinuesBitForBit)
 {
   const std::string restart = "test_gravity.restart";
