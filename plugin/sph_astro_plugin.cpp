@@ -20,6 +20,7 @@
 #include "compute_sph_astro_gravity_direct.h"
 #include "fix_sph_astro.h"
 #include "fix_sph_astro_h.h"
+#include "fix_sph_astro_owned.h"
 #include "fix_sph_astro_snapshot.h"
 #include "fix_sph_astro_switch.h"
 #include "msm_sph_astro_gravity.h"
@@ -63,6 +64,11 @@ static Fix *fix_sph_astro_creator(LAMMPS *lmp, int narg, char **arg)
 static Fix *fix_sph_astro_h_creator(LAMMPS *lmp, int narg, char **arg)
 {
   return new FixSPHAstroH(lmp, narg, arg);
+}
+
+static Fix *fix_sph_astro_owned_creator(LAMMPS *lmp, int narg, char **arg)
+{
+  return new FixSPHAstroOwned(lmp, narg, arg);
 }
 
 static Fix *fix_sph_astro_switch_creator(LAMMPS *lmp, int narg, char **arg)
@@ -132,6 +138,11 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "sph/astro/h";
   plugin.info = "SPH-ASTRO variable smoothing length: dh/dt or h-rho iteration with grad-h";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_sph_astro_h_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.name = "sph/astro/owned";
+  plugin.info = "SPH-ASTRO custom per-atom properties of the owned atoms only (no ghost slots)";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_sph_astro_owned_creator;
   (*register_plugin)(&plugin, lmp);
 
   plugin.name = "sph/astro/switch";

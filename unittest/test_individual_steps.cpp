@@ -433,6 +433,33 @@ TEST(IndividualSteps, RestartAndSplitRunsContinueBitForBitWithPairKicks)
 // newton on makes rows only for the leaves of active particles and takes each step's pairs
 // from them; newton off makes the whole lists and selects the due pairs from the half list
 // (sph_astro_neighbour_lists.h). Both evaluate the same pairs: the runs agree to round-off.
+// a restart file whose particles' step state lies in a fix property/atom of that ID (the layout
+// of other versions: its style is not fix sph/astro/owned, so LAMMPS does not restore it) cannot
+// continue its hierarchy
+TEST(IndividualSteps, ARestartWithoutTheStepStateIsRefused)
+{
+  const std::string restart = "test_individual_steps_old_state.restart";
+  const std::string fix = "sph/astro courant 0.3 steps individual";
+  {
+    auto lmp = open_lammps();
+    hot_spot(lmp, 4, "sph/astro courant 0.3");
+    commands(lmp,
+             {"fix SPH_ASTRO_STEPS all property/atom d_step_begin d_step_end d_step_bin "
+              "d_step_woken d_step_end_then d2_step_accel 3 d2_step_accel_other 3 "
+              "d2_step_kick 3 d2_step_pair_lead 3 d_step_dudt d_step_divv d_step_omega "
+              "d_step_balsara d_step_nneigh d_step_kick_u d_step_lead_u d_step_dudt_other "
+              "d_step_pending_next d2_step_pending 20 d2_step_recent 6",
+              "fix gas all " + fix, "run 41", "write_restart " + restart});
+  }
+  auto lmp = open_lammps();
+  commands(lmp, {"read_restart " + restart});
+  EXPECT_NE(error_of(lmp, "fix gas all " + fix)
+                .find("holds the hierarchy of individual steps but not the particles' step state "
+                      "of fix SPH_ASTRO_STEPS (style sph/astro/owned)"),
+            std::string::npos);
+  std::remove(restart.c_str());
+}
+
 TEST(IndividualSteps, NewtonOffGivesTheRunOfNewtonOn)
 {
   for (const std::string kicks : {"particle", "pair"}) {

@@ -7,6 +7,7 @@
 
 #include "sph_astro_individual_steps.h"
 
+#include "fix_sph_astro_owned.h"
 #include "pair_sph_astro.h"
 #include "sph_astro_options.h"
 #include "sph_astro_sparse_message.h"
@@ -18,6 +19,7 @@
 #include "error.h"
 #include "fix.h"
 #include "group.h"
+#include "modify.h"
 #include "neighbor.h"
 #include "update.h"
 #include "utils.h"
@@ -82,6 +84,9 @@ void IndividualSteps::init(const StateIndex &state, bool state_unchanged)
     error->all(FLERR,
                "fix sph/astro steps individual: the per-particle step state fix {} is missing",
                STEPS_FIX_ID);
+  // (its slots follow LAMMPS' exchanges, sorts and created atoms; a run begins with all)
+  auto *owned = dynamic_cast<FixSPHAstroOwned *>(modify->get_fix_by_id(STEPS_FIX_ID));
+  if (owned) owned->reserve(atom->nlocal);
   continuing_ = started_ && state_unchanged && hierarchy_step_ == update->ntimestep;
   times_opened_ = times_closed_ = -1;    // the run's setup sends the ghosts anew
   bins_sent_step_ = -1;
@@ -769,6 +774,14 @@ int IndividualSteps::read_restart(const double *list)
   updates_ = list[5];
   steps_ = list[6];
   woken_ = list[7];
+  // the particles' step state came back just before, when its fix was created
+  Fix *state = modify->get_fix_by_id(STEPS_FIX_ID);
+  if (started_ && !(state && state->restart_reset))
+    error->all(FLERR,
+               "fix sph/astro steps individual: the restart file holds the hierarchy of "
+               "individual steps but not the particles' step state of fix {} (style {}); it was "
+               "written by another version of SPH-ASTRO",
+               STEPS_FIX_ID, state ? state->style : "none");
   return 8;
 }
 

@@ -177,8 +177,9 @@ void ensure_step_state(LAMMPS *lmp, const char *caller)
                       "{}: a custom per-atom property d_{} already exists outside fix {}; "
                       "SPH-ASTRO owns the names d_step_*",
                       caller, name, STEPS_FIX_ID);
+  // (owned atoms only: no ghost reads the step state, and a ghost costs it no memory)
   lmp->modify->add_fix(std::string(STEPS_FIX_ID) +
-                       " all property/atom d_step_begin d_step_end d_step_bin d_step_woken "
+                       " all sph/astro/owned d_step_begin d_step_end d_step_bin d_step_woken "
                        "d_step_end_then d2_step_accel 3 "
                        "d2_step_accel_other 3 d2_step_kick 3 d2_step_pair_lead 3 d_step_dudt "
                        "d_step_divv d_step_omega d_step_balsara d_step_nneigh d_step_kick_u "

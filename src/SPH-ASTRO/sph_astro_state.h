@@ -77,7 +77,8 @@ bool find_continuity_state(LAMMPS_NS::LAMMPS *lmp, ContinuityIndex &idx);
 
 // Individual timesteps (fix sph/astro steps individual): each particle's place on the time
 // line and what its neighbours need of its last force evaluation until its next one, in their
-// own fix property/atom SPH_ASTRO_STEPS, created only for such scenes:
+// own fix sph/astro/owned SPH_ASTRO_STEPS (owned atoms only: fix_sph_astro_owned.h), created
+// only for such scenes:
 //   d_step_begin, d_step_end   the particle's current step, in ticks (sph_astro_time_bins.h)
 //   d_step_bin                 its bin: dt = dt_max / 2^bin
 //   d_step_woken               the time the limiter first woke it in this step (ticks; -1:

@@ -1,0 +1,175 @@
+/* ----------------------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
+// LAMMPS-driven tests of fix sph/astro/owned (custom per-atom properties of the owned atoms
+// only): no slots for ghosts, values that follow their atoms through exchanges between ranks,
+// sorts, deletions and restarts, 0 for atoms created later, and the arguments it refuses. Run
+// on 1 rank and on 3 (ctest fix_sph_astro_owned_mpi).
+
+#include "lammps_fixture.h"
+
+#include "comm.h"
+#include "fix.h"
+
+#include <cstdio>
+#include <malloc.h>
+
+using namespace sph_astro_test;
+
+namespace {
+
+constexpr int COLS = 3;
+// bytes per owned atom: d_a, d2_b 3 (with its row pointer), i_c
+constexpr double BYTES_PER_ATOM =
+    sizeof(double) + COLS * sizeof(double) + sizeof(double *) + sizeof(int);
+
+// an ideal gas (no forces) in a periodic box of 4 000 atoms moving a few box lengths across the
+// ranks' sub-domains (3 ranks: 3 slabs); every atom's values are functions of its ID
+void moving_gas(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp)
+{
+  commands(lmp,
+           {"units lj",
+            "atom_style atomic",
+            "atom_modify map array sort 5 1.0",
+            "lattice fcc 0.8",
+            "region box block 0 10 0 10 0 10",
+            "create_box 1 box",
+            "create_atoms 1 box",
+            "mass 1 1.0",
+            "pair_style zero 1.0",
+            "pair_coeff * *",
+            "velocity all create 3.0 4928459 loop geom",
+            "fix move all nve",
+            "fix p all sph/astro/owned d_a d2_b 3 i_c",
+            "variable a atom 1.5*id",
+            "variable c atom 2*id",
+            "variable b1 atom id+0.25",
+            "variable b2 atom id+0.5",
+            "variable b3 atom -id",
+            "set group all d_a v_a",
+            "set group all i_c v_c",
+            "set group all d2_b[1] v_b1",
+            "set group all d2_b[2] v_b2",
+            "set group all d2_b[3] v_b3"});
+}
+
+// the atoms whose values are not those of their ID (0 if all are)
+int wrong_values(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp, bool created_are_zero = false,
+                 int first_created = 0)
+{
+  auto *atom = lmp->atom;
+  int flag, cols;
+  const double *a = atom->dvector[atom->find_custom("a", flag, cols)];
+  double **b = atom->darray[atom->find_custom("b", flag, cols)];
+  const int *c = atom->ivector[atom->find_custom("c", flag, cols)];
+  int wrong = 0;
+  for (int i = 0; i < atom->nlocal; i++) {
+    const double id = static_cast<double>(atom->tag[i]);
+    if (created_are_zero && atom->tag[i] >= first_created) {
+      wrong += a[i] != 0.0 || b[i][0] != 0.0 || b[i][1] != 0.0 || b[i][2] != 0.0 || c[i] != 0;
+      continue;
+    }
+    wrong += a[i] != 1.5 * id || b[i][0] != id + 0.25 || b[i][1] != id + 0.5 || b[i][2] != -id ||
+        c[i] != 2 * atom->tag[i];
+  }
+  int all;
+  MPI_Allreduce(&wrong, &all, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
+  return all;
+}
+
+// the atoms each rank owned at the start that another rank owns now (summed over ranks)
+int moved_away(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp, const std::vector<int> &owner_then)
+{
+  auto *atom = lmp->atom;
+  std::vector<int> owner(owner_then.size(), 0), all(owner_then.size(), 0);
+  for (int i = 0; i < atom->nlocal; i++) owner[atom->tag[i]] = lmp->comm->me;
+  MPI_Allreduce(owner.data(), all.data(), static_cast<int>(all.size()), MPI_INT, MPI_SUM,
+                MPI_COMM_WORLD);
+  int moved = 0;
+  for (std::size_t id = 1; id < all.size(); id++) moved += all[id] != owner_then[id];
+  return moved;
+}
+
+std::vector<int> owners(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp)
+{
+  auto *atom = lmp->atom;
+  std::vector<int> owner(atom->natoms + 1, 0), all(atom->natoms + 1, 0);
+  for (int i = 0; i < atom->nlocal; i++) owner[atom->tag[i]] = lmp->comm->me;
+  MPI_Allreduce(owner.data(), all.data(), static_cast<int>(all.size()), MPI_INT, MPI_SUM,
+                MPI_COMM_WORLD);
+  return all;
+}
+
+}    // namespace
+
+// a ghost cutoff of half the box: each rank holds several ghosts per owned atom, and the fix's
+// arrays (their allocations, as the C library sees them) and its memory figure are those of the
+// owned atoms (fix property/atom's arrays are LAMMPS' nmax long)
+TEST(OwnedProperty, HoldsNoSlotsForGhosts)
+{
+  auto lmp = open_lammps();
+  moving_gas(lmp);
+  commands(lmp, {"comm_modify cutoff 5.0", "run 0"});
+  auto *atom = lmp->atom;
+  ASSERT_GT(atom->nghost, 2.5 * atom->nlocal);
+  // (the fix grows its slots by a quarter as atoms arrive, and the C library may hand out more)
+  const double most = 2.0 * atom->nlocal + 64;
+  int flag, cols;
+  const double a_slots = malloc_usable_size(atom->dvector[atom->find_custom("a", flag, cols)]) /
+      static_cast<double>(sizeof(double));
+  const double b_slots = malloc_usable_size(atom->darray[atom->find_custom("b", flag, cols)][0]) /
+      static_cast<double>(COLS * sizeof(double));
+  const double c_slots = malloc_usable_size(atom->ivector[atom->find_custom("c", flag, cols)]) /
+      static_cast<double>(sizeof(int));
+  for (double slots : {a_slots, b_slots, c_slots}) {
+    EXPECT_GE(slots, atom->nlocal);
+    EXPECT_LT(slots, most) << atom->nlocal << " owned, " << atom->nghost << " ghosts";
+  }
+  const double counted = lmp->modify->get_fix_by_id("p")->memory_usage() / BYTES_PER_ATOM;
+  EXPECT_GE(counted, atom->nlocal);
+  EXPECT_LT(counted, most);
+  EXPECT_EQ(wrong_values(lmp), 0);
+}
+
+// exchanges between ranks (the atoms cross the sub-domains several times), LAMMPS' atom sort
+// every 5 steps (through its spare slot), deleted atoms (the last one moves into their slots),
+// created atoms (0) and a restart file
+TEST(OwnedProperty, ValuesFollowTheirAtoms)
+{
+  const std::string restart = "test_fix_sph_astro_owned.restart";
+  LAMMPS_NS::bigint natoms;
+  {
+    auto lmp = open_lammps();
+    moving_gas(lmp);
+    natoms = lmp->atom->natoms;
+    const auto owner_then = owners(lmp);
+    commands(lmp, {"run 1000"});
+    if (lmp->comm->nprocs > 1) EXPECT_GT(moved_away(lmp, owner_then), natoms / 2);
+    EXPECT_EQ(wrong_values(lmp), 0);
+    commands(lmp,
+             {"region corner block 0 2 0 2 0 2", "delete_atoms region corner compress no",
+              "create_atoms 1 single 5.1 5.2 5.3", "create_atoms 1 single 1.1 8.2 3.3", "run 50"});
+    EXPECT_LT(lmp->atom->natoms, natoms);
+    EXPECT_EQ(wrong_values(lmp, true, natoms + 1), 0);
+    commands(lmp, {"write_restart " + restart});
+  }
+  auto lmp = open_lammps();
+  commands(lmp,
+           {"read_restart " + restart, "pair_style zero 1.0", "pair_coeff * *", "fix move all nve",
+            "fix p all sph/astro/owned d_a d2_b 3 i_c", "run 50"});
+  EXPECT_EQ(wrong_values(lmp, true, natoms + 1), 0);
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (lmp->comm->me == 0) std::remove(restart.c_str());
+}
+
+TEST_F(BadInputTest, OwnedPropertyArguments)
+{
+  expect_error("fix p all sph/astro/owned", "expected one or more of d_NAME");
+  expect_error("fix p all sph/astro/owned d_a q", "'q' is not one of d_NAME");
+  expect_error("fix p all sph/astro/owned d_a ghost yes", "'ghost' is not one of d_NAME");
+  expect_error("fix p all sph/astro/owned rmass", "'rmass' is not one of d_NAME");
+}
