@@ -185,3 +185,46 @@ TEST(NeighbourTree, RadixSortByIndexIsTheSort)
     }
   }
 }
+
+// the selection of a leaf's candidates (AVX-512, 16 per step, where the processor has it) keeps
+// exactly the candidates the scalar comparison keeps, in order: counts that are not multiples
+// of 16, radii above and below the point's, and candidates placed on the reach itself, where
+// one rounding more or less (a fused multiply-add) would flip the comparison
+TEST(NeighbourTree, CandidateSelectionIsTheScalarComparison)
+{
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> pos(-1.0, 1.0), rad(0.05, 0.6), unit(0.0, 1.0);
+  int ties = 0;
+  for (int nc : {0, 1, 7, 15, 16, 17, 31, 32, 33, 100, 257}) {
+    for (int trial = 0; trial < 20; trial++) {
+      std::vector<double> cx(nc), cy(nc), cz(nc), cr(nc);
+      std::vector<int> index(nc), found(nc, -1), expected;
+      const double c[3] = {pos(gen), pos(gen), pos(gen)}, rc = rad(gen), pad = 0.1 * unit(gen);
+      for (int m = 0; m < nc; m++) {
+        cr[m] = rad(gen);
+        index[m] = 3 * m + 1;
+        double d[3] = {pos(gen), pos(gen), pos(gen)};
+        if (m % 3 == 0) {    // on the reach: a direction scaled to max(rc, cr) + pad
+          const double norm = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+          for (double &v : d) v *= ((rc > cr[m] ? rc : cr[m]) + pad) / norm;
+        }
+        cx[m] = c[0] + d[0];
+        cy[m] = c[1] + d[1];
+        cz[m] = c[2] + d[2];
+        const double dx = cx[m] - c[0], dy = cy[m] - c[1], dz = cz[m] - c[2];
+        const double reach = (rc > cr[m] ? rc : cr[m]) + pad;
+        volatile double d2 = dx * dx;    // (one rounding per operation, as the selection)
+        d2 = d2 + dy * dy;
+        d2 = d2 + dz * dz;
+        volatile double reach2 = reach * reach;
+        if (d2 < reach2) expected.push_back(index[m]);
+        ties += m % 3 == 0 && (d2 < reach2);
+      }
+      const int n = NeighbourTree::select_within(cx.data(), cy.data(), cz.data(), cr.data(),
+                                                 index.data(), nc, c, rc, pad, found.data());
+      ASSERT_EQ(n, static_cast<int>(expected.size())) << nc << " candidates";
+      for (int k = 0; k < n; k++) EXPECT_EQ(found[k], expected[k]) << k;
+    }
+  }
+  EXPECT_GT(ties, 0);    // some candidates on the reach fall inside by rounding, some outside
+}

@@ -9,7 +9,91 @@
 
 #include <algorithm>
 
+#if defined(__GNUC__) && defined(__x86_64__)
+#include <immintrin.h>
+#define SPH_ASTRO_AVX512_SELECT 1
+#define SPH_ASTRO_NOINLINE __attribute__((noinline))
+#else
+#define SPH_ASTRO_NOINLINE
+#endif
+
 namespace SPHAstro {
+
+namespace {
+  // (not inlined into the AVX-512 version below, whose target would let the compiler fuse its
+  // products and sums into FMAs)
+  SPH_ASTRO_NOINLINE int select_within_scalar(const double *cx, const double *cy, const double *cz,
+                                              const double *cr, const int *index, int nc,
+                                              const double *c, double rc, double pad, int *found)
+  {
+    int n = 0;
+    for (int m = 0; m < nc; m++) {
+      const double dx = cx[m] - c[0], dy = cy[m] - c[1], dz = cz[m] - c[2];
+      const double reach = (rc > cr[m] ? rc : cr[m]) + pad;
+      found[n] = index[m];
+      n += dx * dx + dy * dy + dz * dz < reach * reach;
+    }
+    return n;
+  }
+
+#ifdef SPH_ASTRO_AVX512_SELECT
+  // candidates m .. m + 7 within reach of c (x, y, z; radius r, pad p); the _round_ forms round
+  // products and sums one by one, never fused into one FMA, as in the scalar loop
+  constexpr int ROUND = _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC;
+  __attribute__((target("avx512f"))) inline __mmask8 within8(const double *cx, const double *cy,
+                                                             const double *cz, const double *cr,
+                                                             int m, __m512d x, __m512d y, __m512d z,
+                                                             __m512d r, __m512d p)
+  {
+    const __m512d dx = _mm512_sub_round_pd(_mm512_loadu_pd(cx + m), x, ROUND);
+    const __m512d dy = _mm512_sub_round_pd(_mm512_loadu_pd(cy + m), y, ROUND);
+    const __m512d dz = _mm512_sub_round_pd(_mm512_loadu_pd(cz + m), z, ROUND);
+    const __m512d d2 =
+        _mm512_add_round_pd(_mm512_add_round_pd(_mm512_mul_round_pd(dx, dx, ROUND),
+                                                _mm512_mul_round_pd(dy, dy, ROUND), ROUND),
+                            _mm512_mul_round_pd(dz, dz, ROUND), ROUND);
+    const __m512d reach = _mm512_add_round_pd(_mm512_max_pd(r, _mm512_loadu_pd(cr + m)), p, ROUND);
+    return _mm512_cmp_pd_mask(d2, _mm512_mul_round_pd(reach, reach, ROUND), _CMP_LT_OQ);
+  }
+
+  __attribute__((target("avx512f"))) int
+  select_within_avx512(const double *cx, const double *cy, const double *cz, const double *cr,
+                       const int *index, int nc, const double *c, double rc, double pad, int *found)
+  {
+    const __m512d x = _mm512_set1_pd(c[0]), y = _mm512_set1_pd(c[1]), z = _mm512_set1_pd(c[2]);
+    const __m512d r = _mm512_set1_pd(rc), p = _mm512_set1_pd(pad);
+    int n = 0, m = 0;
+    for (; m + 16 <= nc; m += 16) {
+      const unsigned lo = within8(cx, cy, cz, cr, m, x, y, z, r, p);
+      const unsigned hi = within8(cx, cy, cz, cr, m + 8, x, y, z, r, p);
+      const __mmask16 mask = static_cast<__mmask16>(lo | (hi << 8));
+      _mm512_mask_compressstoreu_epi32(found + n, mask, _mm512_loadu_si512(index + m));
+      n += __builtin_popcount(mask);
+    }
+    return n +
+        select_within_scalar(cx + m, cy + m, cz + m, cr + m, index + m, nc - m, c, rc, pad,
+                             found + n);
+  }
+#endif
+
+  using SelectWithin = int (*)(const double *, const double *, const double *, const double *,
+                               const int *, int, const double *, double, double, int *);
+  SelectWithin choose_select_within()
+  {
+#ifdef SPH_ASTRO_AVX512_SELECT
+    if (__builtin_cpu_supports("avx512f")) return select_within_avx512;
+#endif
+    return select_within_scalar;
+  }
+  const SelectWithin select_within_chosen = choose_select_within();
+}    // namespace
+
+int NeighbourTree::select_within(const double *cx, const double *cy, const double *cz,
+                                 const double *cr, const int *index, int nc, const double *c,
+                                 double rc, double pad, int *found)
+{
+  return select_within_chosen(cx, cy, cz, cr, index, nc, c, rc, pad, found);
+}
 
 void NeighbourTree::build(double **x, const double *radius, const int *index, int n)
 {
