@@ -81,19 +81,7 @@ int wrong_values(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp, bool created_are
   return all;
 }
 
-// the atoms each rank owned at the start that another rank owns now (summed over ranks)
-int moved_away(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp, const std::vector<int> &owner_then)
-{
-  auto *atom = lmp->atom;
-  std::vector<int> owner(owner_then.size(), 0), all(owner_then.size(), 0);
-  for (int i = 0; i < atom->nlocal; i++) owner[atom->tag[i]] = lmp->comm->me;
-  MPI_Allreduce(owner.data(), all.data(), static_cast<int>(all.size()), MPI_INT, MPI_SUM,
-                MPI_COMM_WORLD);
-  int moved = 0;
-  for (std::size_t id = 1; id < all.size(); id++) moved += all[id] != owner_then[id];
-  return moved;
-}
-
+// the rank that owns each atom ID (index: ID)
 std::vector<int> owners(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp)
 {
   auto *atom = lmp->atom;
@@ -102,6 +90,15 @@ std::vector<int> owners(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp)
   MPI_Allreduce(owner.data(), all.data(), static_cast<int>(all.size()), MPI_INT, MPI_SUM,
                 MPI_COMM_WORLD);
   return all;
+}
+
+// the atoms that another rank owns now than at the start
+int moved_away(const std::unique_ptr<LAMMPS_NS::LAMMPS> &lmp, const std::vector<int> &owner_then)
+{
+  const std::vector<int> now = owners(lmp);
+  int moved = 0;
+  for (std::size_t id = 1; id < now.size(); id++) moved += now[id] != owner_then[id];
+  return moved;
 }
 
 }    // namespace
