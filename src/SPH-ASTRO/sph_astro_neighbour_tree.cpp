@@ -81,6 +81,7 @@ namespace {
   SelectWithin choose_select_within()
   {
 #ifdef SPH_ASTRO_AVX512_SELECT
+    __builtin_cpu_init();    // (this runs from a static initializer, maybe before libgcc's)
     if (__builtin_cpu_supports("avx512f")) return select_within_avx512;
 #endif
     return select_within_scalar;
