@@ -42,7 +42,6 @@ class FixSPHAstroOwned : public FixPropertyAtom {
 
   // slots for the atoms [0, n) at least; new slots hold 0
   void reserve(int n);
-  int capacity() const { return capacity_; }
 
  private:
   int capacity_;
