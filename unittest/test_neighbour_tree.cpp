@@ -10,6 +10,7 @@
 // points on a line and on a plane, coincident points, and points moved after the build.
 
 #include "sph_astro_neighbour_tree.h"
+#include "sph_astro_pair_loop.h"
 
 #include <gtest/gtest.h>
 
@@ -227,4 +228,50 @@ TEST(NeighbourTree, CandidateSelectionIsTheScalarComparison)
     }
   }
   EXPECT_GT(ties, 0);    // some candidates on the reach fall inside by rounding, some outside
+}
+
+// the h iteration's entries (sph_astro_pair_loop.h): gathered once within R h_near, then at
+// every support up to it the same entries, in the same row order and with the same
+// separations, as a pass over the whole row; a row's special-bond bits are masked off
+TEST(NearEntries, AreTheRowsEntriesInsideEachSupportInRowOrder)
+{
+  std::mt19937 gen(7);
+  std::uniform_real_distribution<double> coord(0.0, 1.0);
+  const int n = 400;
+  std::vector<double> flat(3 * n);
+  std::vector<double *> x(n);
+  for (int k = 0; k < n; k++) {
+    x[k] = &flat[3 * k];
+    for (int d = 0; d < 3; d++) x[k][d] = coord(gen);
+  }
+  // atom 5 at 0.5 from atom 0 exactly: on the bound of near2 = 0.25 and of support2 = 0.25
+  for (int d = 0; d < 3; d++) x[5][d] = x[0][d];
+  x[5][0] += 0.5;
+  SPHAstro::NearEntries near;
+  for (int jnum : {n - 1, 57, 0, n - 1}) {
+    std::vector<int> row;
+    for (int j = 1; j <= jnum; j++) row.push_back(j | (j % 7 == 0 ? 1 << 30 : 0));
+    std::shuffle(row.begin(), row.end(), gen);
+    const double near2 = 0.25;
+    near.gather(x.data(), 0, row.data(), jnum, near2);
+    for (double support2 : {0.0, 0.01, 0.09, 0.2, 0.25}) {
+      std::vector<int> want, got;
+      std::vector<double> want_d, got_d;
+      for (int jj = 0; jj < jnum; jj++) {
+        const int j = row[jj] & NEIGHMASK;
+        const double dx = x[0][0] - x[j][0], dy = x[0][1] - x[j][1], dz = x[0][2] - x[j][2];
+        const double r2 = dx * dx + dy * dy + dz * dz;
+        if (r2 >= support2) continue;
+        want.push_back(j);
+        want_d.insert(want_d.end(), {dx, dy, dz, r2});
+      }
+      near.each(support2, [&](int j, double dx, double dy, double dz, double r2) {
+        got.push_back(j);
+        got_d.insert(got_d.end(), {dx, dy, dz, r2});
+      });
+      EXPECT_EQ(got, want) << "jnum " << jnum << ", support2 " << support2;
+      EXPECT_EQ(got_d, want_d);    // (bit for bit)
+      if (support2 > 0.05 && jnum > 100) EXPECT_GT(want.size(), 5u);
+    }
+  }
 }

@@ -22,6 +22,7 @@
 
 #include "error.h"
 
+#include <algorithm>
 #include <cmath>
 
 using namespace LAMMPS_NS;
@@ -80,6 +81,10 @@ namespace {
     void end(int i, Own &own) const { nneigh[i] += own.n; }
   };
 
+  // the entries kept for an h iteration: those within NEAR_MARGIN x the h it first tries (and
+  // again for an h that goes past that)
+  constexpr double NEAR_MARGIN = 1.1;
+
   // SUMS (VelocitySums) and PE compiled in: this loop runs several times per particle
   template <class KERNEL, int DIM, int SUMS, bool PE>
   void gradh_loop(const PassContext &ctx, const GradhSettings &s, GradhStatistics &stats)
@@ -100,6 +105,7 @@ namespace {
     const double hfact_d = std::pow(s.hfact, DIM);
     const double gm1 = s.gamma - 1.0;
     const NeighView &nl = s.full;
+    NearEntries near;
 
     for (int ii = 0; ii < nl.inum; ii++) {
       const int i = nl.ilist[ii];
@@ -116,10 +122,18 @@ namespace {
       double curl_sum[4] = {0.0, 0.0, 0.0, 0.0};
       double grad_sum[VGRAD_SUMS] = {};
       bool converged = false, at_cap = false;
+      double h_near = -1.0;    // near holds the row's entries within R h_near
       int it = 0;
       while (it < s.max_iterations) {
         it++;
-        if (hi > hlist) { jlist = s.wide->row(i, hi, hlist, jnum); }
+        if (hi > hlist) {
+          jlist = s.wide->row(i, hi, hlist, jnum);
+          h_near = -1.0;
+        }
+        if (!(hi <= h_near)) {
+          h_near = std::min(hlist, NEAR_MARGIN * hi);
+          near.gather(x, i, jlist, jnum, R2 * h_near * h_near);
+        }
         const double hinv = 1.0 / hi;
         const double norm = sigma * inv_h_pow_dim<DIM>(hinv);
         GradhSums mass, energy;
@@ -128,27 +142,26 @@ namespace {
         double vsum[4] = {0.0, 0.0, 0.0, 0.0};
         double gsum[VGRAD_SUMS] = {};
         ni = 0.0;
-        gather_row(x, i, jlist, jnum, R2 * hi * hi,
-                   [&](int j, double dx, double dy, double dz, double r2) {
-                     const double r = std::sqrt(r2);
-                     const double q = r * hinv;
-                     const double mj = p.mass_of(j);
-                     const double w = K::w(q), dw = K::dw(q);
-                     mass.add(mj, w, dw, q, DIM);
-                     if constexpr (pe) energy.add(mj * uest[j], w, dw, q, DIM);
-                     ni += 1.0;
-                     if constexpr (curl || gradient) {
-                       if (r2 == 0.0) return;
-                       const double dvx = vest[i][0] - vest[j][0], dvy = vest[i][1] - vest[j][1],
-                                    dvz = vest[i][2] - vest[j][2];
-                       if (curl) {
-                         double c[4];
-                         iact_velocity_curl(dvx, dvy, dvz, dx, dy, dz, mj * dw / r, c);
-                         for (int k = 0; k < 4; k++) vsum[k] += c[k];
-                       } else
-                         velocity_gradient_add(gsum, mj * dw / r, dvx, dvy, dvz, dx, dy, dz);
-                     }
-                   });
+        near.each(R2 * hi * hi, [&](int j, double dx, double dy, double dz, double r2) {
+          const double r = std::sqrt(r2);
+          const double q = r * hinv;
+          const double mj = p.mass_of(j);
+          const double w = K::w(q), dw = K::dw(q);
+          mass.add(mj, w, dw, q, DIM);
+          if constexpr (pe) energy.add(mj * uest[j], w, dw, q, DIM);
+          ni += 1.0;
+          if constexpr (curl || gradient) {
+            if (r2 == 0.0) return;
+            const double dvx = vest[i][0] - vest[j][0], dvy = vest[i][1] - vest[j][1],
+                         dvz = vest[i][2] - vest[j][2];
+            if (curl) {
+              double c[4];
+              iact_velocity_curl(dvx, dvy, dvz, dx, dy, dz, mj * dw / r, c);
+              for (int k = 0; k < 4; k++) vsum[k] += c[k];
+            } else
+              velocity_gradient_add(gsum, mj * dw / r, dvx, dvy, dvz, dx, dy, dz);
+          }
+        });
         if (curl)    // grad_i W = sigma h^-(d+1) w'(q) r_ij / r
           for (int k = 0; k < 4; k++) curl_sum[k] = norm * hinv * vsum[k];
         if (gradient)

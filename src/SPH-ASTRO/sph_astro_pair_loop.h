@@ -9,8 +9,8 @@
 // full), takes the positions, tests the kernel support(s) of the pair, evaluates the pair's
 // kernel (value or gradient, sph_astro_iact.h) and hands it to an interaction adapter, which
 // gathers the particles' numbers, calls the interaction function and accumulates for i and,
-// where update_j (newton on, or j owned), for j. gather_row() is the gather form over one row
-// of a full list at one h_i (the h-rho iteration). with_variant() selects the compiled
+// where update_j (newton on, or j owned), for j. NearEntries is the gather form over one row
+// of a full list at the h_i of the h-rho iteration. with_variant() selects the compiled
 // variant: kernel x dimension x {mean h, two h}; every other option is a run-time value.
 //
 // An adapter ACT provides
@@ -28,6 +28,8 @@
 #include "lmptype.h"
 #include "sph_astro_iact.h"
 #include "sph_astro_neigh_view.h"
+
+#include <vector>
 
 namespace SPHAstro {
 
@@ -91,19 +93,50 @@ void pair_loop(const NeighView &nl, const Particles &p, bool newton, bool averag
   }
 }
 
-// the neighbours j of one row with r_ij^2 < support2: row(j, dx, dy, dz, r2)
-template <class ROW>
-inline void gather_row(double **x, int i, const int *jlist, int jnum, double support2, ROW &&row)
-{
-  const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
-  for (int jj = 0; jj < jnum; jj++) {
-    const int j = jlist[jj] & NEIGHMASK;
-    const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
-    const double r2 = dx * dx + dy * dy + dz * dz;
-    if (r2 >= support2) continue;
-    row(j, dx, dy, dz, r2);
+// the entries of one row of a full list within a distance of atom i, with their separations,
+// in row order (the h-rho iteration: its h moves by a few per cent from its first guess, and
+// the sums at each h it tries run over these entries instead of the whole row: the same
+// terms in the same order, without the row's gathers of x_j). gather() keeps them
+// branch-free: each entry is written at slot n, and n advances where it is kept; each()
+// hands those with r_ij^2 < support2 to row(j, dx, dy, dz, r2)
+class NearEntries {
+ public:
+  void gather(double **x, int i, const int *jlist, int jnum, double near2)
+  {
+    if (static_cast<int>(j_.size()) < jnum) {
+      j_.resize(jnum);
+      dx_.resize(jnum);
+      dy_.resize(jnum);
+      dz_.resize(jnum);
+      r2_.resize(jnum);
+    }
+    // (i's position copied: the stores below cannot alias it)
+    const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
+    int n = 0;
+    for (int jj = 0; jj < jnum; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      j_[n] = j;
+      dx_[n] = dx;
+      dy_[n] = dy;
+      dz_[n] = dz;
+      r2_[n] = r2;
+      n += r2 < near2;
+    }
+    n_ = n;
   }
-}
+  template <class ROW> void each(double support2, ROW &&row) const
+  {
+    for (int k = 0; k < n_; k++)
+      if (r2_[k] < support2) row(j_[k], dx_[k], dy_[k], dz_[k], r2_[k]);
+  }
+
+ private:
+  std::vector<int> j_;
+  std::vector<double> dx_, dy_, dz_, r2_;
+  int n_ = 0;
+};
 
 // a compiled variant of the passes: kernel, dimension, mean h or two h
 template <class KERNEL, int DIM, bool TWO_H> struct Variant {
