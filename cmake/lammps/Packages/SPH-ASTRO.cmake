@@ -13,3 +13,12 @@ target_include_directories(lammps PRIVATE ${HDF5_C_INCLUDE_DIRS})
 if(HDF5_C_DEFINITIONS)
   target_compile_definitions(lammps PRIVATE ${HDF5_C_DEFINITIONS})
 endif()
+# the package's sources without FMA contraction, whatever instruction set this LAMMPS build
+# targets: every product and sum rounded on its own, the numbers of the plugin's build
+# (cmake/CMakeLists.txt) bit for bit
+include(CheckCXXCompilerFlag)
+check_cxx_compiler_flag(-ffp-contract=off SPH_ASTRO_HAS_FP_CONTRACT_OFF)
+if(SPH_ASTRO_HAS_FP_CONTRACT_OFF)
+  file(GLOB _sph_astro_sources ${LAMMPS_SOURCE_DIR}/SPH-ASTRO/*.cpp)
+  set_source_files_properties(${_sph_astro_sources} PROPERTIES COMPILE_OPTIONS -ffp-contract=off)
+endif()
