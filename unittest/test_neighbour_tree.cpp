@@ -244,17 +244,18 @@ TEST(NearEntries, AreTheRowsEntriesInsideEachSupportInRowOrder)
     x[k] = &flat[3 * k];
     for (int d = 0; d < 3; d++) x[k][d] = coord(gen);
   }
-  // atom 5 at 0.5 from atom 0 exactly: on the bound of near2 = 0.25 and of support2 = 0.25
-  for (int d = 0; d < 3; d++) x[5][d] = x[0][d];
-  x[5][0] += 0.5;
+  // atoms 0 and 5 exactly 0.5 apart (dyadic coordinates: no rounding): kept by the gather
+  // (near2 = 0.5625), on the bound of support2 = 0.25, where each() must leave it out
+  for (int d = 0; d < 3; d++) x[0][d] = x[5][d] = 0.25;
+  x[5][0] = 0.75;
   SPHAstro::NearEntries near;
   for (int jnum : {n - 1, 57, 0, n - 1}) {
     std::vector<int> row;
     for (int j = 1; j <= jnum; j++) row.push_back(j | (j % 7 == 0 ? 1 << 30 : 0));
     std::shuffle(row.begin(), row.end(), gen);
-    const double near2 = 0.25;
+    const double near2 = 0.5625;
     near.gather(x.data(), 0, row.data(), jnum, near2);
-    for (double support2 : {0.0, 0.01, 0.09, 0.2, 0.25}) {
+    for (double support2 : {0.0, 0.01, 0.09, 0.25, 0.5625}) {
       std::vector<int> want, got;
       std::vector<double> want_d, got_d;
       for (int jj = 0; jj < jnum; jj++) {
@@ -272,6 +273,8 @@ TEST(NearEntries, AreTheRowsEntriesInsideEachSupportInRowOrder)
       EXPECT_EQ(got, want) << "jnum " << jnum << ", support2 " << support2;
       EXPECT_EQ(got_d, want_d);    // (bit for bit)
       if (support2 > 0.05 && jnum > 100) EXPECT_GT(want.size(), 5u);
+      if (jnum > 100)    // (atom 5 on the bound 0.25, inside 0.5625)
+        EXPECT_EQ(std::count(got.begin(), got.end(), 5), support2 > 0.25 ? 1 : 0);
     }
   }
 }
