@@ -41,11 +41,6 @@ double IndividualSteps::tick() const
   return dt_max_ / TimeBins::cycle();
 }
 
-double IndividualSteps::mass(int i) const
-{
-  return atom->rmass ? atom->rmass[i] : atom->mass[atom->type[i]];
-}
-
 void IndividualSteps::grow()
 {
   const std::size_t n = atom->nmax;
@@ -245,8 +240,12 @@ void IndividualSteps::kick_drift(double h_cap, bool evolve_u)
     }
     uest[i] = evolve_u ? u[i] + tau * dudt[i] + lead_u[i] : u[i];
     // rho and h follow the last div v (active particles: the h iteration's first guess)
-    if (h_cap > 0.0) h[i] = std::min(h[i] * std::exp(dt_over_d * divv[i]), h_cap);
-    rho[i] *= std::exp(-dt * divv[i]);
+    if (divv[i] != 0.0) {
+      if (h_cap > 0.0) h[i] = std::min(h[i] * std::exp(dt_over_d * divv[i]), h_cap);
+      rho[i] *= std::exp(-dt * divv[i]);
+    } else if (h_cap > 0.0) {
+      h[i] = std::min(h[i], h_cap);
+    }
   }
 }
 
@@ -256,11 +255,12 @@ void IndividualSteps::pre_force(PairSPHAstro *pair)
   const int nlocal = atom->nlocal;
   const int *mask = atom->mask;
   const double *end = atom->dvector[idx_.end];
-  double count = 0.0;
+  active_list_.clear();
   for (int i = 0; i < nlocal; i++) {
     active_[i] = (mask[i] & owner_->groupbit) && end[i] == ti_next_;
-    count += active_[i];
+    if (active_[i]) active_list_.push_back(i);
   }
+  const double count = static_cast<double>(active_list_.size());
   comm_ = Comm::ACTIVE;
   comm->forward_comm(owner_, 2);
   MPI_Allreduce(&count, &active_total_, 1, MPI_DOUBLE, MPI_SUM, world);
@@ -293,6 +293,14 @@ void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
+    if (!active_[i] &&
+        !(pair_kicks_ &&
+          (touched_mark_[i] || (pending_next[i] > 0.0 && pending_next[i] <= ti_next_)))) {
+      // in no pair of this evaluation and no close of a pair: no kick, its leads stay
+      dudt[i] = dudt_kept[i];
+      for (int d = 0; d < 3; d++) f[i][d] = m * accel[i][d];
+      continue;
+    }
     // the pairs evaluated now close their interval on both atoms, active or not
     const double *sum = pair_sums(i);
     const double *rate = sum + SUM_KICKS;
@@ -362,7 +370,6 @@ void IndividualSteps::end_of_step(const std::vector<double> &wanted, PairSPHAstr
   // sum_j F_ij is m (accel - accel_other) since final_kick)
   pair_impulses(pair, false, false);
   keep_pending();
-  const int nlocal = atom->nlocal;
   const int *mask = atom->mask;
   double **kick = atom->darray[idx_.kick];
   double **lead = atom->darray[idx_.pair_lead];
@@ -374,8 +381,10 @@ void IndividualSteps::end_of_step(const std::vector<double> &wanted, PairSPHAstr
   double *lead_u = atom->dvector[idx_.lead_u];
   const double *dudt = atom->dvector[idx_.dudt];
   const double *dudt_other = atom->dvector[idx_.dudt_other];
-  for (int i = 0; pair_kicks_ && i < nlocal; i++) {
-    if (!(mask[i] & owner_->groupbit)) continue;
+  // the atoms in a pair of this evaluation, and the active ones (an inactive atom in no pair has
+  // no opening kick, and its lead stays)
+  auto open = [&](int i) {
+    if (!(mask[i] & owner_->groupbit)) return;
     const double m = mass(i);
     const double *sum = pair_sums(i);
     for (int d = 0; d < 3; d++) kick[i][d] = sum[d] / m;
@@ -392,6 +401,11 @@ void IndividualSteps::end_of_step(const std::vector<double> &wanted, PairSPHAstr
       for (int d = 0; d < 3; d++) lead[i][d] -= sum[d] / m;
       lead_u[i] -= sum[3];
     }
+  };
+  if (pair_kicks_) {
+    for (int i : touched_owned_) open(i);
+    for (int i : active_list_)
+      if (!touched_mark_[i]) open(i);
   }
   advance_to_next();
 }

@@ -161,6 +161,7 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   double dt_max_ = 0.0;
   LAMMPS_NS::bigint hierarchy_step_ = -1;    // the step the hierarchy's state belongs to
   std::vector<char> active_;
+  std::vector<int> active_list_;             // the active owned atoms of this step (pre_force)
   std::vector<double> bins_, required_;      // owned and ghost: bins, the limiter's minimum bin
   std::vector<double> bins_sent_;            // owned: the bins last sent to the ghosts
   std::vector<char> bins_changed_;           // owned and ghost atoms whose bins are sent
@@ -193,7 +194,7 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   double active_total_ = 0.0, updates_ = 0.0, steps_ = 0.0, woken_ = 0.0;
 
   double tick() const;
-  double mass(int i) const;
+  double mass(int i) const { return atom->rmass ? atom->rmass[i] : atom->mass[atom->type[i]]; }
   // pair sph/astro keeps the pairs it evaluates: for the limiter and the pair kicks
   bool records_pairs() const { return levels_ > 0 || pair_kicks_; }
   void grow();
