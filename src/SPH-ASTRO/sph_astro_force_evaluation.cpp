@@ -73,7 +73,7 @@ NeighView ForceEvaluation::evaluated_pairs(NeighbourLists &lists)
 void ForceEvaluation::select_pairs(NeighbourLists &lists)
 {
   ctx_.half = evaluated_pairs(lists);
-  chosen_ghosts_ = nullptr;
+  chosen_ghosts_ = ctx_.ghosts_in_pairs = nullptr;
   if (!individual()) return;
   const int nlocal = ctx_.p.nlocal;
   const std::size_t nall = ctx_.p.nall;
@@ -88,7 +88,7 @@ void ForceEvaluation::select_pairs(NeighbourLists &lists)
       if (row[e] >= nlocal) in_pairs_[row[e]] = 1;
   }
   exchange_.gather_marks(in_pairs_.data());
-  chosen_ghosts_ = in_pairs_.data();
+  chosen_ghosts_ = ctx_.ghosts_in_pairs = in_pairs_.data();
 }
 
 void ForceEvaluation::restore(double *field, const double *kept)

@@ -154,7 +154,10 @@ void force_pass(const PassContext &ctx, const ForceSettings &s, bool two_h, bool
   Fields &f = *ctx.f;
   const bool signal = s.viscosity && s.signal;
   const int nzero = ctx.nzero();
+  const int nlocal = ctx.p.nlocal;
+  const char *ghosts = ctx.ghosts_in_pairs;
   for (int i = 0; i < nzero; i++) {
+    if (ghosts && i >= nlocal && !ghosts[i]) continue;
     f.vdotgradw[i] = 0.0;
     if (s.energy) ctx.dudt[i] = 0.0;
     if (s.track_signal) f.vsigmax[i] = 2.0 * f.soundspeed[i];    // the pair with itself
@@ -167,6 +170,7 @@ void force_pass(const PassContext &ctx, const ForceSettings &s, bool two_h, bool
   const bool pe = s.pressure == PressureForm::PRESSURE_ENERGY;
   const bool geo = s.pressure == PressureForm::GEOMETRIC;
   for (int i = 0; i < nall; i++) {
+    if (ghosts && i >= nlocal && !ghosts[i]) continue;
     const double rho = ctx.rho[i];
     f.prho[i] = geo ? f.pressure_factor[i]
         : pe        ? f.pressure_factor[i] / f.pressure[i]
