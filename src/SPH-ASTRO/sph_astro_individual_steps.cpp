@@ -85,6 +85,7 @@ void IndividualSteps::init(const StateIndex &state, bool state_unchanged)
   continuing_ = started_ && state_unchanged && hierarchy_step_ == update->ntimestep;
   times_opened_ = times_closed_ = -1;    // the run's setup sends the ghosts anew
   bins_sent_step_ = -1;
+  kicked_step_ = -1;    // (the setup may reorder the atoms)
 }
 
 void IndividualSteps::setup_pre_force(PairSPHAstro *pair)
@@ -133,6 +134,7 @@ void IndividualSteps::start(const std::vector<double> &wanted, double dtmax, dou
   started_ = true;
   updates_ = steps_ = woken_ = 0.0;
   hierarchy_step_ = update->ntimestep;
+  kicked_step_ = -1;
   assign_bins(wanted, true, pair);
   if (!open_pairs) {
     advance_to_next();
@@ -198,20 +200,26 @@ void IndividualSteps::kick_drift(double h_cap, bool evolve_u)
   const double *divv = atom->dvector[idx_.divv];
   const double *const *recent = atom->darray[idx_.recent];
   const double t_end = ti_next_ * t;
-  for (int i = 0; i < nlocal; i++) {
-    if (!(mask[i] & owner_->groupbit)) {
-      for (int d = 0; d < 3; d++) vest[i][d] = v[i][d];
-      uest[i] = u[i];
-      continue;
-    }
-    // the pair kicks that opened at the last evaluation (also those of a run with kicks pair
-    // that this one continues)
+  // the pair kicks that opened at the last evaluation: those of the atoms in its pairs, or
+  // (the first step of a run, which may continue one with kicks pair, or of a hierarchy) all
+  const bool listed = kicked_step_ >= 0 && kicked_step_ == update->ntimestep - 1;
+  auto opening_kick = [&](int i) {
     for (int d = 0; d < 3; d++) {
       v[i][d] += kick[i][d];
       kick[i][d] = 0.0;
     }
     if (evolve_u) u[i] += kick_u[i];
     kick_u[i] = 0.0;
+  };
+  if (listed)
+    for (int i : kicked_) opening_kick(i);
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & owner_->groupbit)) {
+      for (int d = 0; d < 3; d++) vest[i][d] = v[i][d];
+      uest[i] = u[i];
+      continue;
+    }
+    if (!listed) opening_kick(i);
     if (begin[i] == ti_now_) {    // a step begins: first half kick (terms not of pairs)
       const double half = 0.5 * (end[i] - begin[i]) * t;
       for (int d = 0; d < 3; d++) v[i][d] += half * accel_other[i][d];
@@ -402,11 +410,14 @@ void IndividualSteps::end_of_step(const std::vector<double> &wanted, PairSPHAstr
       lead_u[i] -= sum[3];
     }
   };
+  kicked_.clear();
   if (pair_kicks_) {
     for (int i : touched_owned_) open(i);
     for (int i : active_list_)
       if (!touched_mark_[i]) open(i);
+    kicked_ = touched_owned_;
   }
+  kicked_step_ = update->ntimestep;
   advance_to_next();
 }
 

@@ -161,7 +161,11 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   double dt_max_ = 0.0;
   LAMMPS_NS::bigint hierarchy_step_ = -1;    // the step the hierarchy's state belongs to
   std::vector<char> active_;
-  std::vector<int> active_list_;             // the active owned atoms of this step (pre_force)
+  std::vector<int> active_list_;    // the active owned atoms of this step (pre_force)
+  // the owned atoms given an opening kick at step kicked_step_ (end_of_step; -1: any atom may
+  // have one)
+  std::vector<int> kicked_;
+  LAMMPS_NS::bigint kicked_step_ = -1;
   std::vector<double> bins_, required_;      // owned and ghost: bins, the limiter's minimum bin
   std::vector<double> bins_sent_;            // owned: the bins last sent to the ghosts
   std::vector<char> bins_changed_;           // owned and ghost atoms whose bins are sent
