@@ -73,7 +73,7 @@ NeighView ForceEvaluation::evaluated_pairs(NeighbourLists &lists)
 void ForceEvaluation::select_pairs(NeighbourLists &lists)
 {
   ctx_.half = evaluated_pairs(lists);
-  chosen_ghosts_ = ctx_.ghosts_in_pairs = nullptr;
+  ctx_.ghosts_in_pairs = nullptr;
   if (!individual()) return;
   const int nlocal = ctx_.p.nlocal;
   const std::size_t nall = ctx_.p.nall;
@@ -88,7 +88,7 @@ void ForceEvaluation::select_pairs(NeighbourLists &lists)
       if (row[e] >= nlocal) in_pairs_[row[e]] = 1;
   }
   exchange_.gather_marks(in_pairs_.data());
-  chosen_ghosts_ = ctx_.ghosts_in_pairs = in_pairs_.data();
+  ctx_.ghosts_in_pairs = in_pairs_.data();
 }
 
 void ForceEvaluation::restore(double *field, const double *kept)
@@ -187,8 +187,8 @@ void ForceEvaluation::forward_state()
       {ghost_u ? ctx_.uest : nullptr, nullptr, 1, false},
       {o_.balsara ? f.balsara : nullptr, nullptr, 1, false},
       {nullptr, o_.reconstruction() ? f.vgrad : nullptr, VGRAD_DATA, false}};
-  if (chosen_ghosts_)
-    exchange_.forward_chosen(state, chosen_ghosts_);
+  if (ctx_.ghosts_in_pairs)
+    exchange_.forward_chosen(state, ctx_.ghosts_in_pairs);
   else
     exchange_.forward(state);
 }
@@ -213,8 +213,8 @@ void ForceEvaluation::force()
         {f.vdotgradw, nullptr, 1, false},
         {s.track_signal ? f.vsigmax : nullptr, nullptr, 1, true},
         {s.alpha_u > 0.0 ? f.condrate : nullptr, nullptr, 1, false}};
-    if (chosen_ghosts_)
-      exchange_.reverse_chosen(sums, chosen_ghosts_);
+    if (ctx_.ghosts_in_pairs)
+      exchange_.reverse_chosen(sums, ctx_.ghosts_in_pairs);
     else
       exchange_.reverse(sums);
   }

@@ -94,9 +94,9 @@ class ForceEvaluation {
   std::vector<int> active_owned_;
   std::vector<double> rho_kept_;
   bool vest_sent_ = false;    // the ghosts have this evaluation's v_est
-  // individual steps: the ghosts in this evaluation's pairs, and their owners (chosen_ghosts_)
+  // individual steps: the ghosts in this evaluation's pairs, and their owners (the marks of
+  // ctx_.ghosts_in_pairs)
   std::vector<char> in_pairs_;
-  const char *chosen_ghosts_ = nullptr;
 
   bool individual() const { return a_.steps.active != nullptr; }
   // individual steps: the half list's pairs with an active atom

@@ -301,9 +301,8 @@ void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
-    if (!active_[i] &&
-        !(pair_kicks_ &&
-          (touched_mark_[i] || (pending_next[i] > 0.0 && pending_next[i] <= ti_next_)))) {
+    const bool closes = pair_kicks_ && pending_next[i] > 0.0 && pending_next[i] <= ti_next_;
+    if (!active_[i] && !closes && !(pair_kicks_ && touched_mark_[i])) {
       // in no pair of this evaluation and no close of a pair: no kick, its leads stay
       dudt[i] = dudt_kept[i];
       for (int d = 0; d < 3; d++) f[i][d] = m * accel[i][d];
@@ -319,7 +318,6 @@ void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
       for (int d = 0; d < 3; d++) lead[i][d] -= sum[d] / m;
       lead_u[i] -= sum[3];
       dudt[i] = dudt_kept[i];
-      const bool closes = pair_kicks_ && pending_next[i] > 0.0 && pending_next[i] <= ti_next_;
       if (closes || (pair_kicks_ && extra_at_[i] >= 0)) {
         // the pairs that close now replace their opening's force in the prediction: the
         // pending slots of this close (and of earlier ones: pairs with a woken partner)

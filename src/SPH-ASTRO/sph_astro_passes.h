@@ -54,8 +54,9 @@ struct PassContext {
   LAMMPS_NS::Error *error;
   LAMMPS_NS::Pair *tally;    // non-null: tally the pair virial (ev_tally)
   EvaluatedPairs *pairs;     // non-null: the force pass records each pair
-  // individual steps: the ghosts in the pairs of this evaluation (marked; null: every ghost);
-  // the force pass leaves the others out of its loops over atoms
+  // individual steps: marks over owned and ghost atoms, set for the ghosts in the pairs of
+  // this evaluation and their owners (null: every ghost); the state goes to, and the sums come
+  // back from, the marked ghosts only, and the force pass leaves the others out of its loops
   const char *ghosts_in_pairs = nullptr;
   int nzero() const { return newton ? p.nall : p.nlocal; }
 };
