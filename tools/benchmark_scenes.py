@@ -24,7 +24,9 @@ particle kicks, ``-var kicks particle``: ``sedov16ik``, ``sedov22ik``, ``sedov35
 Courant signal speed over the neighbours,
 ``-var vsig pairs``; ``sedov16c``, ``sedov22c``, ``sedov35c`` and, with individual steps,
 ``sedov16ic``, ``sedov22ic``, ``sedov35ic``: SWIFT's Courant criterion, ``-var vsig pairs
--var courant 0.4``), and ``swift35`` and ``swift56``: SWIFT's Sedov at 42 875 and
+-var courant 0.4``); ``sedov16s``, ``sedov22s``, ``sedov35s`` and, with individual steps,
+``sedov16is``, ``sedov22is``, ``sedov35is``: the blast energy in equal shares in the central
+particle and its 12 nearest, ``-var deposit shell``), and ``swift35`` and ``swift56``: SWIFT's Sedov at 42 875 and
 175 616 particles (``--swift-bin``: the swift executable, built with SPHENIX and the cubic
 spline as its repository describes; ``--swift-dir``: a folder with ``swift_sedov.yml`` and
 ``swift_sedov_ic.py ``; 2 threads, ``--hydro --limiter``). SWIFT is never part of this
@@ -97,10 +99,17 @@ for _name in ("sedov16", "sedov22", "sedov35"):
     SCENES[_name + "ip"] = (_script, dict(_vars, vsig="pairs", steps="individual"))
     SCENES[_name + "c"] = (_script, dict(_vars, vsig="pairs", courant=0.4))
     SCENES[_name + "ic"] = (_script, dict(_vars, vsig="pairs", courant=0.4, steps="individual"))
+# Sedov with E in equal shares in the central particle and its 12 nearest (deposit shell, as
+# SWIFT's example puts it in its 15 central particles): global steps row name + "s",
+# individual steps + "is"
+for _name in ("sedov16", "sedov22", "sedov35"):
+    _script, _vars = SCENES[_name]
+    SCENES[_name + "s"] = (_script, dict(_vars, deposit="shell"))
+    SCENES[_name + "is"] = (_script, dict(_vars, deposit="shell", steps="individual"))
 SWIFT_ROWS = {"swift35": 35, "swift56": 56}
 ORDER = ["box1e4", "box1e5", "box1e6", "box1e5i"] + [
     s + v for s in ("sedov16", "sedov22", "sedov35")
-    for v in ("", "p", "i", "ik", "ip", "i2", "c", "ic")] + [
+    for v in ("", "p", "i", "ik", "ip", "i2", "c", "ic", "s", "is")] + [
     "noh24", "noh24i", "noh24ik", "evrard", "evrardi", "evrardik", "swift35", "swift56"]
 
 _LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", re.M)

@@ -7,7 +7,9 @@ Runs examples/sedov/in.sedov (background pressure 1e-6: the blast runs into gas 
 timestep is long) three times at the same resolution: every particle at the smallest step
 (``steps global``), individual steps with the timestep limiter (``steps individual``), and
 individual steps without it (``limiter off``), all with the same Courant signal speed
-(``--vsig``, fix sph/astro vsig; viscosity by default, as the fix). Prints for each the shock
+(``--vsig``, fix sph/astro vsig; viscosity by default, as the fix) and the same deposit of
+the blast energy (``--deposit``: in.sedov's kernel weights by default, or equal shares in the
+central particle and its 12 nearest). Prints for each the shock
 radius offset (binned density peak) and L1(rho) against the self-similar solution, the peak
 density, the energy error, the particle-updates, the LAMMPS steps and the wall time; then the
 individual runs' differences from the global one.
@@ -15,7 +17,7 @@ individual runs' differences from the global one.
 Usage (from anywhere; after source build/env.sh: build/venv's python3 and lmp on the PATH)::
 
     python3 examples/sedov/compare_steps.py [--n 16] [--np 1] [--limiter N]
-        [--kicks pair|particle] [--vsig viscosity|pairs] [--outdir DIR]
+        [--kicks pair|particle] [--vsig viscosity|pairs] [--deposit kernel|shell] [--outdir DIR]
         [--assert 'l1=0.02,rshock=0.02,nolimiter=0.1,updates=0.30']
 
 ``--assert`` fails (exit 1) unless: the limited individual run's L1(rho) and shock radius
@@ -25,7 +27,8 @@ without the limiter goes visibly wrong: it misses the analytic shock radius by m
 pair``, also conserves energy worse than ``nolimiter`` or stops with an error (sleeping gas
 next to the blast is pushed by its pairs but heated over its own long step), and the limited
 run evaluates at most ``updates`` x the global run's particle-updates; ``energy`` (optional):
-the limited individual run's relative total-energy error is at most that in magnitude.
+the limited individual run's relative total-energy error is at most that in magnitude;
+``hot`` (optional): the blast energy went into at most that many particles.
 """
 
 import argparse
@@ -43,6 +46,7 @@ from sphastro.runs import parse_sph_log
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 _UPDATES = re.compile(r"fix sph/astro steps individual: (\S+) particle-updates")
+_DEPOSIT = re.compile(r"^Sedov: N = .* over (\d+) particles", re.M)
 
 
 def variants(limiter, kicks, vsig):
@@ -61,7 +65,8 @@ def run(name, args, extra, may_fail=False):
     work = os.path.join(args.outdir, name.replace(" ", "_"))
     os.makedirs(work, exist_ok=True)
     cmd = ["lmp", "-in", os.path.join(HERE, "in.sedov"), "-log", "log.lammps", "-screen",
-           "none", "-var", "n", str(args.n), "-var", "out", "dump.sedov"] + extra
+           "none", "-var", "n", str(args.n), "-var", "out", "dump.sedov", "-var", "deposit",
+           args.deposit] + extra
     if args.np > 1:
         cmd = ["mpirun", "--oversubscribe", "-np", str(args.np)] + cmd
     start = time.time()
@@ -78,11 +83,14 @@ def run(name, args, extra, may_fail=False):
     res = sedov.sedov_errors(frame, frame.time if frame.time is not None else 0.1)
     log = parse_sph_log(log_path, loops="sum")
     with open(log_path, encoding="utf-8", errors="replace") as f:
-        found = _UPDATES.findall(f.read())
+        text = f.read()
+    found = _UPDATES.findall(text)
     updates = float(found[-1]) if found else float(log["natoms"]) * log["steps"]
+    hot = _DEPOSIT.findall(text)
     return {"name": name, "rshock": res["err_r_peak"], "l1": res["rho"],
             "peak": res["rho_peak"], "energy": log["energy"], "updates": updates,
-            "steps": log["steps"], "wall": wall, "N": log["natoms"]}
+            "steps": log["steps"], "wall": wall, "N": log["natoms"],
+            "hot": float(hot[0]) if hot else math.nan}
 
 
 def main(argv=None):
@@ -97,13 +105,17 @@ def main(argv=None):
     parser.add_argument("--vsig", choices=("viscosity", "pairs"), default="viscosity",
                         help="fix sph/astro vsig of all three runs (default viscosity, the "
                         "fix's default)")
+    parser.add_argument("--deposit", choices=("kernel", "shell"), default="kernel",
+                        help="in.sedov's deposit of the blast energy in all three runs "
+                        "(default kernel, the input's)")
     parser.add_argument("--outdir", default="sedov_compare_steps")
     cli.add_assert_argument(parser, "fail (exit 1) unless l1, rshock, updates, energy <= "
                             "bound and nolimiter >= bound (see the docstring)")
     args = parser.parse_args(argv)
     rows = [run(name, args, extra, may_fail=name == "no limiter")
             for name, extra in variants(args.limiter, args.kicks, args.vsig)]
-    print(f"Sedov, {rows[0]['N']} particles, {args.np} rank(s), t = 0.1")
+    print(f"Sedov, {rows[0]['N']} particles, {args.np} rank(s), t = 0.1, blast energy "
+          f"deposited in {rows[0]['hot']:g} particles ({args.deposit})")
     print(f"{'steps':>11} {'R_s offset':>10} {'L1(rho)':>9} {'peak':>7} {'energy err':>11} "
           f"{'updates':>10} {'/particle':>9} {'LAMMPS steps':>12} {'wall s':>7}")
     for r in rows:
@@ -129,7 +141,8 @@ def main(argv=None):
         failure = abs(nolim["rshock"]) if args.kicks == "particle" else max(
             abs(nolim["rshock"]) if "error" not in nolim else 0.0, abs(nolim["energy"]))
         return cli.assert_bounds(args.bounds,
-                                 {**diff, "nolimiter": failure, "energy": abs(ind["energy"])},
+                                 {**diff, "nolimiter": failure, "energy": abs(ind["energy"]),
+                                  "hot": rows[0]["hot"]},
                                  lower=("nolimiter",), error=parser.error)
     return 0
 
