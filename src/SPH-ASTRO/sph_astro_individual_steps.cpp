@@ -213,16 +213,25 @@ void IndividualSteps::kick_drift(double h_cap, bool evolve_u)
   };
   if (listed)
     for (int i : kicked_) opening_kick(i);
+  if (nlocal == 0) return;
+  // (the per-atom arrays are contiguous, LAMMPS' memory->create: one stream each, not a row
+  // pointer per atom as well)
+  double *xf = x[0], *vf = v[0], *vestf = vest[0];
+  const double *accelf = accel[0];
+  const double *leadf = pair_kicks_ ? lead[0] : nullptr;
+  const double *recentf = pair_kicks_ ? recent[0] : nullptr;
   for (int i = 0; i < nlocal; i++) {
+    double *xi = xf + 3 * i, *vi = vf + 3 * i, *vesti = vestf + 3 * i;
+    const double *acceli = accelf + 3 * i;
     if (!(mask[i] & owner_->groupbit)) {
-      for (int d = 0; d < 3; d++) vest[i][d] = v[i][d];
+      for (int d = 0; d < 3; d++) vesti[d] = vi[d];
       uest[i] = u[i];
       continue;
     }
     if (!listed) opening_kick(i);
     if (begin[i] == ti_now_) {    // a step begins: first half kick (terms not of pairs)
       const double half = 0.5 * (end[i] - begin[i]) * t;
-      for (int d = 0; d < 3; d++) v[i][d] += half * accel_other[i][d];
+      for (int d = 0; d < 3; d++) vi[d] += half * accel_other[i][d];
       if (evolve_u) u[i] += half * dudt_other[i];
     }
     // the velocity predicted from the middle of the particle's step; with kicks pair, the
@@ -239,12 +248,13 @@ void IndividualSteps::kick_drift(double h_cap, bool evolve_u)
     double lead_x[3] = {0.0, 0.0, 0.0}, lead_v[3] = {0.0, 0.0, 0.0};
     if (pair_kicks_)
       for (int d = 0; d < 3; d++) {
-        lead_x[d] = lead[i][d];
-        lead_v[d] = lead[i][d] + recent[i][d] * t_end - recent[i][3 + d];
+        const double *recenti = recentf + RECENT_VALUES * i;
+        lead_x[d] = leadf[3 * i + d];
+        lead_v[d] = leadf[3 * i + d] + recenti[d] * t_end - recenti[3 + d];
       }
     for (int d = 0; d < 3; d++) {
-      x[i][d] += dt * (v[i][d] + tau_drift * accel[i][d] + lead_x[d]);
-      vest[i][d] = v[i][d] + tau * accel[i][d] + lead_v[d];
+      xi[d] += dt * (vi[d] + tau_drift * acceli[d] + lead_x[d]);
+      vesti[d] = vi[d] + tau * acceli[d] + lead_v[d];
     }
     uest[i] = evolve_u ? u[i] + tau * dudt[i] + lead_u[i] : u[i];
     // rho and h follow the last div v (active particles: the h iteration's first guess)
@@ -298,6 +308,9 @@ void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
   double **pending = atom->darray[idx_.pending];
   double **recent = atom->darray[idx_.recent];
   double *pending_next = atom->dvector[idx_.pending_next];
+  if (nlocal == 0) return;
+  double *ff = f[0];    // (contiguous, as in kick_drift)
+  const double *accelf = accel[0];
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
@@ -305,7 +318,7 @@ void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
     if (!active_[i] && !closes && !(pair_kicks_ && touched_mark_[i])) {
       // in no pair of this evaluation and no close of a pair: no kick, its leads stay
       dudt[i] = dudt_kept[i];
-      for (int d = 0; d < 3; d++) f[i][d] = m * accel[i][d];
+      for (int d = 0; d < 3; d++) ff[3 * i + d] = m * accelf[3 * i + d];
       continue;
     }
     // the pairs evaluated now close their interval on both atoms, active or not

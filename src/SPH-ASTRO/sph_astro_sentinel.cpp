@@ -68,11 +68,14 @@ void StabilitySentinel::start_run()
 
 void StabilitySentinel::check_velocities(int groupbit, const char *when)
 {
+  if (atom->nlocal == 0) return;
   double **v = atom->v;
+  const double *vf = v[0];    // (contiguous: one stream, no row pointer per atom)
   const int *mask = atom->mask;
   for (int i = 0; i < atom->nlocal; i++)
     if ((mask[i] & groupbit) &&
-        !std::isfinite(v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]))
+        !std::isfinite(vf[3 * i] * vf[3 * i] + vf[3 * i + 1] * vf[3 * i + 1] +
+                       vf[3 * i + 2] * vf[3 * i + 2]))
       error->one(FLERR,
                  "fix sph/astro: atom {} has velocity ({}, {}, {}) {} (step {}); velocities must "
                  "be finite, with a finite square (|v| < 1e154)",
