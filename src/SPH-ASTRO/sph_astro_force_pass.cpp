@@ -28,7 +28,10 @@ namespace {
     const PassContext &ctx;
     const ForceSettings s;    // a copy: no store to a double array can change it
     const Fields &f;
-    double **force;
+    // (f and v_est from their first rows: LAMMPS' per-atom arrays are contiguous, and a
+    // partner's values are then one load, not its row pointer and then the row)
+    double *force;
+    const double *vest;
     double *dudt;
     struct Own {
       ForceParticle pi;
@@ -64,9 +67,9 @@ namespace {
         q.alpha = s.alpha;
         q.u = 0.0;
       }
-      q.vx = ctx.vest[i][0];
-      q.vy = ctx.vest[i][1];
-      q.vz = ctx.vest[i][2];
+      q.vx = vest[3 * i];
+      q.vy = vest[3 * i + 1];
+      q.vz = vest[3 * i + 2];
     }
     void begin(int i, Own &own) const
     {
@@ -89,9 +92,9 @@ namespace {
       own.crate += c.crate_i;
       if (c.vsig > own.vsig) own.vsig = c.vsig;
       if (update_j) {
-        force[j][0] -= dx * c.fpair;
-        force[j][1] -= dy * c.fpair;
-        force[j][2] -= dz * c.fpair;
+        force[3 * j] -= dx * c.fpair;
+        force[3 * j + 1] -= dy * c.fpair;
+        force[3 * j + 2] -= dz * c.fpair;
         f.vdotgradw[j] += c.vgw_j;
         if (s.energy) dudt[j] += c.heat_j;
         if (s.track_signal && c.vsig > f.vsigmax[j]) f.vsigmax[j] = c.vsig;
@@ -112,9 +115,9 @@ namespace {
     }
     void end(int i, Own &own) const
     {
-      force[i][0] += own.fx;
-      force[i][1] += own.fy;
-      force[i][2] += own.fz;
+      force[3 * i] += own.fx;
+      force[3 * i + 1] += own.fy;
+      force[3 * i + 2] += own.fz;
       f.vdotgradw[i] += own.vgw;
       if (s.energy) dudt[i] += own.heat;
       if (s.track_signal && own.vsig > f.vsigmax[i]) f.vsigmax[i] = own.vsig;
@@ -190,6 +193,9 @@ void force_pass(const PassContext &ctx, const ForceSettings &s, bool two_h, bool
     for (int ii = 0; ii < ctx.half.inum; ii++) entries += ctx.half.numneigh[ctx.half.ilist[ii]];
     ctx.pairs->reserve(ctx.half.inum, entries);
   }
+  if (ctx.half.inum == 0) return;
+  double *force = ctx.force[0];
+  const double *vest = ctx.vest[0];
   with_variant(ctx.kernel, ctx.dim, two_h, [&](auto v) {
     using V = decltype(v);
     auto run = [&](auto adapter) {
@@ -198,7 +204,7 @@ void force_pass(const PassContext &ctx, const ForceSettings &s, bool two_h, bool
     };
     auto adapter = [&](auto visc_tag, auto level_tag) {
       constexpr int VISC = decltype(visc_tag)::value, LEVEL = decltype(level_tag)::value;
-      run(ForceAdapter<VISC, LEVEL>{ctx, settings, f, ctx.force, ctx.dudt, f.prho, b, w, C});
+      run(ForceAdapter<VISC, LEVEL>{ctx, settings, f, force, vest, ctx.dudt, f.prho, b, w, C});
     };
     using Plain = std::integral_constant<int, FORCE_PLAIN>;
     using Common = std::integral_constant<int, FORCE_COMMON>;

@@ -89,22 +89,24 @@ void IndividualSteps::pair_impulses(PairSPHAstro *pair, bool closing, bool with_
   extra_.clear();
   touched_owned_.clear();
   const double half_tick = 0.5 * tick();
-  double **x = atom->x;    // (those of the force evaluation: no drift since)
   const EvaluatedPairs &pairs = pair->evaluated_pairs();
+  // (those of the force evaluation: no drift since; from the first row, as in pair_loop)
+  const double *x = pairs.rows.empty() ? nullptr : atom->x[0];
   const double *heat = pairs.heats ? pairs.heat.data() : nullptr;
   int k = 0;
   for (const EvaluatedPairs::Row &row : pairs.rows) {
     const int i = row.i;
     const double *ti = &times_[NTIMES * i];
     const bool i_sleeps = !active_[i];
-    const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
+    const double xi = x[3 * i], yi = x[3 * i + 1], zi = x[3 * i + 2];
     // impulse and force, then the u kick and du/dt; closing: sum_j F_ij t_mid,ij
     double impulse[SUM_KICKS] = {0.0, 0.0, 0.0, 0.0}, force[SUM_KICKS] = {0.0, 0.0, 0.0, 0.0};
     double middle[3] = {0.0, 0.0, 0.0};
     for (; k < row.end; k++) {
       const int jp = pairs.partner[k], j = jp >= 0 ? jp : ~jp;
       const double fpair = pairs.fpair[k];
-      const double f[3] = {(xi - x[j][0]) * fpair, (yi - x[j][1]) * fpair, (zi - x[j][2]) * fpair};
+      const double f[3] = {(xi - x[3 * j]) * fpair, (yi - x[3 * j + 1]) * fpair,
+                           (zi - x[3 * j + 2]) * fpair};
       const double *tj = &times_[NTIMES * j];
       double w, mid = 0.0;
       if (closing) {

@@ -59,13 +59,16 @@ inline bool within_support(double R2, const KernelSide &ki, double hj, double r2
 template <class KERNEL, int DIM, bool TWO_H, class ACT>
 void pair_loop(const NeighView &nl, const Particles &p, bool newton, bool average, ACT &act)
 {
+  if (nl.inum == 0) return;
   const PairKernel<KERNEL, DIM> kern;
-  double **x = p.x;
+  // (x from its first row: LAMMPS' memory->create makes it contiguous, and a partner's
+  // position is then one load, not its row pointer and then the row)
+  const double *x = p.x[0];
   const double *h = p.h;
   const int nlocal = p.nlocal;
   for (int ii = 0; ii < nl.inum; ii++) {
     const int i = nl.ilist[ii];
-    const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
+    const double xi = x[3 * i], yi = x[3 * i + 1], zi = x[3 * i + 2];
     const KernelSide ki(h[i], kern.R2);
     typename ACT::Own own;
     act.begin(i, own);
@@ -73,7 +76,7 @@ void pair_loop(const NeighView &nl, const Particles &p, bool newton, bool averag
     const int jnum = nl.numneigh[i];
     for (int jj = 0; jj < jnum; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
-      const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
+      const double dx = xi - x[3 * j], dy = yi - x[3 * j + 1], dz = zi - x[3 * j + 2];
       const double r2 = dx * dx + dy * dy + dz * dz;
       const bool update_j = newton || j < nlocal;
       if constexpr (ACT::use == KernelUse::VALUE) {
@@ -101,8 +104,9 @@ void pair_loop(const NeighView &nl, const Particles &p, bool newton, bool averag
 // hands those with r_ij^2 < support2 to row(j, dx, dy, dz, r2)
 class NearEntries {
  public:
-  void gather(double **x, int i, const int *jlist, int jnum, double near2)
+  void gather(double **xrows, int i, const int *jlist, int jnum, double near2)
   {
+    const double *x = xrows[0];    // (contiguous, as in pair_loop)
     if (static_cast<int>(j_.size()) < jnum) {
       j_.resize(jnum);
       dx_.resize(jnum);
@@ -111,11 +115,11 @@ class NearEntries {
       r2_.resize(jnum);
     }
     // (i's position copied: the stores below cannot alias it)
-    const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
+    const double xi = x[3 * i], yi = x[3 * i + 1], zi = x[3 * i + 2];
     int n = 0;
     for (int jj = 0; jj < jnum; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
-      const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
+      const double dx = xi - x[3 * j], dy = yi - x[3 * j + 1], dz = zi - x[3 * j + 2];
       const double r2 = dx * dx + dy * dy + dz * dz;
       j_[n] = j;
       dx_[n] = dx;
