@@ -246,12 +246,13 @@ void IndividualSteps::kick_drift(double h_cap, bool evolve_u)
     // since its own evaluation, sum (F_ij,new - F_ij,old) (t - t_mid,ij) / m = s t - c (its
     // drift stays on its parabola)
     double lead_x[3] = {0.0, 0.0, 0.0}, lead_v[3] = {0.0, 0.0, 0.0};
-    if (pair_kicks_)
+    if (pair_kicks_) {
+      const double *leadi = leadf + 3 * i, *recenti = recentf + RECENT_VALUES * i;
       for (int d = 0; d < 3; d++) {
-        const double *recenti = recentf + RECENT_VALUES * i;
-        lead_x[d] = leadf[3 * i + d];
-        lead_v[d] = leadf[3 * i + d] + recenti[d] * t_end - recenti[3 + d];
+        lead_x[d] = leadi[d];
+        lead_v[d] = leadi[d] + recenti[d] * t_end - recenti[3 + d];
       }
+    }
     for (int d = 0; d < 3; d++) {
       xi[d] += dt * (vi[d] + tau_drift * acceli[d] + lead_x[d]);
       vesti[d] = vi[d] + tau * acceli[d] + lead_v[d];
