@@ -94,10 +94,11 @@ namespace {
     Fields &f = *ctx.f;
     double **x = p.x;
     double *h = const_cast<double *>(p.h);
-    double **vest = ctx.vest;
     const double *uest = ctx.uest;
     constexpr bool curl = SUMS == static_cast<int>(VelocitySums::CURL);
     constexpr bool gradient = SUMS == static_cast<int>(VelocitySums::GRADIENT);
+    // (v_est from its first row: contiguous, one load per partner, as in pair_loop)
+    const double *vest = ((curl || gradient) && p.nall > 0) ? ctx.vest[0] : nullptr;
     constexpr bool pe = PE;
     const double sigma = K::sigma();
     const double R2 = K::radius * K::radius;
@@ -152,8 +153,8 @@ namespace {
           ni += 1.0;
           if constexpr (curl || gradient) {
             if (r2 == 0.0) return;
-            const double dvx = vest[i][0] - vest[j][0], dvy = vest[i][1] - vest[j][1],
-                         dvz = vest[i][2] - vest[j][2];
+            const double dvx = vest[3 * i] - vest[3 * j], dvy = vest[3 * i + 1] - vest[3 * j + 1],
+                         dvz = vest[3 * i + 2] - vest[3 * j + 2];
             if (curl) {
               double c[4];
               iact_velocity_curl(dvx, dvy, dvz, dx, dy, dz, mj * dw / r, c);

@@ -27,7 +27,7 @@ namespace {
   struct VelocitySumAdapter {
     static constexpr KernelUse use = KernelUse::GRADIENT;
     const Particles &p;
-    double **vest;
+    const double *vest;    // (from its first row: contiguous, as in pair_loop)
     double **sums;
     bool gradient;
     int nsums;
@@ -44,8 +44,8 @@ namespace {
               bool update_j) const
     {
       const double mj = p.mass_of(j);
-      const double dvx = vest[i][0] - vest[j][0], dvy = vest[i][1] - vest[j][1],
-                   dvz = vest[i][2] - vest[j][2];
+      const double dvx = vest[3 * i] - vest[3 * j], dvy = vest[3 * i + 1] - vest[3 * j + 1],
+                   dvz = vest[3 * i + 2] - vest[3 * j + 2];
       if (gradient) {
         velocity_gradient_add(own.acc, mj * g.dwi, dvx, dvy, dvz, dx, dy, dz);
         if (update_j) velocity_gradient_add(sums[j], own.m * g.dwi, dvx, dvy, dvz, dx, dy, dz);
@@ -73,9 +73,11 @@ void velocity_sums(const PassContext &ctx, bool two_h, VelocitySums which)
   const int nzero = ctx.nzero();
   for (int i = 0; i < nzero; i++)
     for (int k = 0; k < nsums; k++) sums[i][k] = 0.0;
+  if (ctx.half.inum == 0) return;
+  const double *vest = ctx.vest[0];
   with_variant(ctx.kernel, ctx.dim, two_h, [&](auto v) {
     using V = decltype(v);
-    VelocitySumAdapter act{ctx.p, ctx.vest, sums, gradient, nsums};
+    VelocitySumAdapter act{ctx.p, vest, sums, gradient, nsums};
     pair_loop<typename V::kernel, V::dim, V::two_h>(ctx.half, ctx.p, ctx.newton, true, act);
   });
 }
