@@ -26,12 +26,13 @@ Courant signal speed over the neighbours,
 ``sedov16ic``, ``sedov22ic``, ``sedov35ic``: SWIFT's Courant criterion, ``-var vsig pairs
 -var courant 0.4``); ``sedov16s``, ``sedov22s``, ``sedov35s`` and, with individual steps,
 ``sedov16is``, ``sedov22is``, ``sedov35is``: the blast energy in equal shares in the central
-particle and its 12 nearest, ``-var deposit shell``), and ``swift35`` and ``swift56``: SWIFT's Sedov at 42 875 and
-175 616 particles (``--swift-bin``: the swift executable, built with SPHENIX and the cubic
-spline as its repository describes; ``--swift-dir``: a folder with ``swift_sedov.yml`` and
-``swift_sedov_ic.py ``; 2 threads, ``--hydro --limiter``). SWIFT is never part of this
-repository or of its tests; its rows are skipped when it is absent. ``--individual-var
-kicks=particle`` runs the rows with individual steps with ``-var kicks particle`` instead.
+particle and its 12 nearest, ``-var deposit shell``), and ``swift35`` and ``swift56``:
+SWIFT's Sedov at 42 875 and 175 616 particles (``--swift-bin``: the swift executable, built
+with SPHENIX and the cubic spline as its repository describes; ``--swift-dir``: a folder
+with ``swift_sedov.yml`` and ``swift_sedov_ic.py ``; 2 threads, ``--hydro --limiter``).
+SWIFT is never part of this repository or of its tests; its rows are skipped when it is
+absent. ``--individual-var kicks=particle`` runs the rows with individual steps with ``-var
+kicks particle`` instead.
 
 Each SPH-ASTRO row runs ``mpirun -np NP /usr/bin/time -f %M lmp ...`` and prints
 
