@@ -552,12 +552,15 @@ TEST_F(BadInput, SmoothingLengthFixArguments)
 {
   expect_error("fix hvar all sph/astro/h iterate margin 0.9", "margin = 0.9 must be >= 1");
   expect_error("fix hvar all sph/astro/h iterate rebuild 0.9",
-               "unknown keyword 'rebuild'; allowed: hfact, tol, maxiter, margin, hmax (the "
+               "unknown keyword 'rebuild'; allowed: hfact, tol, maxiter, margin, hmax, ghosts (the "
                "package's neighbour search follows h within a run");
   expect_error("fix hvar all sph/astro/h dhdt collections auto",
-               "unknown keyword 'collections'; allowed: margin, hmax (the package's neighbour");
+               "unknown keyword 'collections'; allowed: margin, hmax, ghosts (the package's "
+               "neighbour");
   expect_error("fix hvar all sph/astro/h dhdt hfact 1.2",
-               "unknown keyword 'hfact'; allowed: margin, hmax");
+               "unknown keyword 'hfact'; allowed: margin, hmax, ghosts");
+  expect_error("fix hvar all sph/astro/h iterate ghosts thin",
+               "ghosts = thin is not one of: narrow, full");
   expect_error("fix hvar all sph/astro/h iterate hmax 0", "hmax = 0 must be > 0");
 }
 

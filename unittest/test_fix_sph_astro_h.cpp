@@ -10,6 +10,7 @@
 
 #include "styles_fixture.h"
 
+#include "comm.h"
 #include "compute.h"
 #include "fix.h"
 #include "force.h"
@@ -428,6 +429,122 @@ TEST(NeighbourSearch, HRaisedTenfoldBetweenRunsIsServed)
   EXPECT_LT(rho_error, 1e-12);
   EXPECT_LT(worst, 1e-3);
   EXPECT_LT(hmax, 3.0 * 1.2 * std::cbrt(0.25));
+}
+
+// ------------------------------------------------------ ghost shells (ghosts narrow)
+
+// the shells of CommSPHAstro (nullptr: LAMMPS' own communication)
+static const double *shell_widths(const std::unique_ptr<LAMMPS> &lmp, const int **narrowed)
+{
+  int dim;
+  *narrowed = static_cast<const int *>(lmp->comm->extract("sph/astro/narrowed", dim));
+  return static_cast<const double *>(lmp->comm->extract("sph/astro/widths", dim));
+}
+
+// a hot spot in the middle of a periodic box of 10 cells (one rank: every ghost is a periodic
+// image): as its h grows it widens the ghost cutoff, while the cold gas at the faces sets the
+// narrow shells
+static std::unique_ptr<LAMMPS> hot_spot_in_a_box(const std::string &hfix, int steps,
+                                                 double hot_h = 1.0, double radius = 1.3)
+{
+  auto lmp = open_lammps();
+  gas(lmp, "box", 10, PAIR, "sph/astro courant 0.3", 1.0, 0.04);
+  commands(lmp,
+           {"region hot sphere 5 5 5 " + num(radius) + " units box", "set region hot d_u 5.0",
+            "set region hot d_h " + num(hot_h * 1.2 * std::cbrt(0.25)), hfix,
+            "run " + std::to_string(steps)});
+  return lmp;
+}
+
+struct ShellRun {
+  std::map<int, double> x[3], rho;
+  int nghost = 0;
+  bool custom_comm = false;
+  double widths[3] = {0, 0, 0};
+  int narrowed[3] = {0, 0, 0};
+};
+
+static ShellRun shell_run(const std::string &ghosts)
+{
+  const auto lmp = hot_spot_in_a_box("fix hvar all sph/astro/h iterate ghosts " + ghosts, 80);
+  ShellRun run;
+  for (int col = 0; col < 3; col++) run.x[col] = per_atom(lmp, "x", col);
+  run.rho = per_atom(lmp, "rho");
+  run.nghost = lmp->atom->nghost;
+  const int *narrowed = nullptr;
+  const double *widths = shell_widths(lmp, &narrowed);
+  run.custom_comm = widths != nullptr;
+  for (int d = 0; widths && d < 3; d++) {
+    run.widths[d] = widths[d];
+    run.narrowed[d] = narrowed[d];
+  }
+  return run;
+}
+
+TEST(GhostShells, NarrowShellsGiveTheTrajectoryOfTheWholeShell)
+{
+  // (one LAMMPS instance at a time: the plugin list is the process's)
+  const ShellRun whole = shell_run("full"), narrow = shell_run("narrow");
+  EXPECT_FALSE(whole.custom_comm);    // ghosts full: LAMMPS' own communication
+  ASSERT_TRUE(narrow.custom_comm);
+  printf("hot spot in a box: %d ghosts with the whole shell, %d with shells %.4g %.4g %.4g\n",
+         whole.nghost, narrow.nghost, narrow.widths[0], narrow.widths[1], narrow.widths[2]);
+  for (int d = 0; d < 3; d++) EXPECT_EQ(narrow.narrowed[d], 1);
+  EXPECT_LT(narrow.nghost, 0.8 * whole.nghost);
+  // each density and force sums the same pairs in the same order: the same bits
+  for (int col = 0; col < 3; col++) {
+    double worst = 0.0;
+    for (const auto &[id, value] : whole.x[col])
+      worst = std::max(worst, std::fabs(narrow.x[col].at(id) - value));
+    EXPECT_EQ(worst, 0.0) << "column " << col;
+  }
+  EXPECT_EQ(worst_relative(whole.rho, narrow.rho), 0.0);
+}
+
+// h raised between runs (dhdt keeps it; run pre no keeps the shells) for the cold atom nearest
+// the face x = 0: within its shell but LIST_REBUILD short of it, the fix has LAMMPS reneighbour
+// and make the shells anew; past it (below the ghost cutoff, which the hot spot's h, set 1.4
+// times the cold gas's, keeps wider than the shells), the run stops naming the atom
+static std::string raise_h_at_the_face(double share_of_shell, double &remakes, double &width,
+                                       double &width_after)
+{
+  auto lmp = hot_spot_in_a_box("fix hvar all sph/astro/h dhdt", 30, 1.4, 0.8);
+  const int *narrowed = nullptr;
+  const double *widths = shell_widths(lmp, &narrowed);
+  if (!widths || !narrowed[0]) return "no narrow shell in x";
+  width = widths[0];
+  const double skin = lmp->neighbor->skin, R = 2.0;
+  const double cap = (lmp->comm->get_comm_cutoff() - skin) / R;
+  auto *atom = lmp->atom;
+  int nearest = 0;
+  for (int i = 1; i < atom->nlocal; i++)
+    if (atom->x[i][0] < atom->x[nearest][0]) nearest = i;
+  const std::string id = std::to_string(atom->tag[nearest]);
+  auto *fix = lmp->modify->get_fix_by_id("hvar");
+  const double before = fix->compute_vector(8);
+  const double h = std::min(share_of_shell * (width - skin) / R, 0.98 * cap);
+  commands(lmp, {"set atom " + id + " d_h " + num(h)});
+  const std::string message = error_of(lmp, "run 2 pre no");
+  remakes = fix->compute_vector(8) - before;
+  width_after = shell_widths(lmp, &narrowed)[0];
+  return message.empty() ? "" : "atom " + id + ": " + message;
+}
+
+TEST(GhostShells, AnHNearingItsShellRemakesItAndOnePastItStops)
+{
+  double remakes, width, width_after;
+  // support R h + skin at 0.95 of the shell: R LIST_GROWTH LIST_REBUILD h + skin beyond it
+  std::string message = raise_h_at_the_face(0.95, remakes, width, width_after);
+  printf("shell %.4g in x, %.4g after %.0f reneighbourings asked for by the shells\n", width,
+         width_after, remakes);
+  EXPECT_EQ(message, "");
+  EXPECT_GE(remakes, 1.0);
+  EXPECT_GT(width_after, width);
+  // support past the shell
+  message = raise_h_at_the_face(1.2, remakes, width, width_after);
+  const std::string id = message.substr(0, message.find(':'));
+  EXPECT_NE(message.find(id + " (h = "), std::string::npos) << message;
+  EXPECT_NE(message.find("past that dimension's ghost shell"), std::string::npos) << message;
 }
 
 TEST(FixSPHAstroH, DhdtFollowsTheDivergence)

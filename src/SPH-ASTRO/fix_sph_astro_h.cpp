@@ -31,8 +31,9 @@
 // 2 largest number of iterations, 3 particles that did not converge since the run began,
 // 4 particles held at the h cap in the latest pass, 5 ghost-cutoff widenings, 6 reneighbourings
 // asked for because an h neared its lists' limit, 7 list builds inside a step because an h
-// outgrew its lists and 8 h iterations that went past their list's limit (summed over ranks;
-// 5-8 since the fix was defined).
+// outgrew its lists, 8 h iterations that went past their list's limit (summed over ranks) and
+// 9 reneighbourings asked for because an h neared its dimension's ghost shell (ghosts narrow);
+// 5-9 since the fix was defined.
 
 #include "fix_sph_astro_h.h"
 
@@ -44,8 +45,11 @@
 #include "group.h"
 #include "memory.h"
 #include "modify.h"
+#include "neigh_request.h"
 #include "neighbor.h"
+#include "pair_hybrid.h"
 #include "pair_sph_astro.h"
+#include "pair_sph_astro_gravity.h"
 #include "sph_astro_neighbour_lists.h"
 #include "sph_astro_options.h"
 #include "sph_astro_passes.h"
@@ -53,6 +57,7 @@
 #include "update.h"
 #include "utils.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -78,7 +83,7 @@ FixSPHAstroH::FixSPHAstroH(LAMMPS *lmp, int narg, char **arg) :
   iterate_flag_ = 1;
 
   vector_flag = 1;
-  size_vector = 8;
+  size_vector = 9;
   restart_global = 1;
   global_freq = 1;
   extvector = 0;
@@ -102,6 +107,13 @@ FixSPHAstroH::FixSPHAstroH(LAMMPS *lmp, int narg, char **arg) :
     } else if (key == "margin") {
       margin_ = utils::numeric(FLERR, val, false, lmp);
       if (!(margin_ >= 1.0)) error->all(FLERR, "fix sph/astro/h: margin = {} must be >= 1", val);
+    } else if (key == "ghosts") {
+      if (strcmp(val, "narrow") == 0)
+        narrow_ghosts_ = true;
+      else if (strcmp(val, "full") == 0)
+        narrow_ghosts_ = false;
+      else
+        error->all(FLERR, "fix sph/astro/h: ghosts = {} is not one of: narrow, full", val);
     } else if (mode_ == Mode::ITERATE && key == "hfact") {
       hfact_ = utils::numeric(FLERR, val, false, lmp);
       if (!(hfact_ > 0.0)) error->all(FLERR, "fix sph/astro/h: hfact = {} must be > 0", val);
@@ -114,7 +126,8 @@ FixSPHAstroH::FixSPHAstroH(LAMMPS *lmp, int narg, char **arg) :
       if (max_iterations_ < 1) error->all(FLERR, "fix sph/astro/h: maxiter = {} must be >= 1", val);
     } else
       error->all(FLERR, "fix sph/astro/h {}: unknown keyword '{}'; allowed: {}{}", arg[3], key,
-                 mode_ == Mode::ITERATE ? "hfact, tol, maxiter, margin, hmax" : "margin, hmax",
+                 mode_ == Mode::ITERATE ? "hfact, tol, maxiter, margin, hmax, ghosts"
+                                        : "margin, hmax, ghosts",
                  key == "rebuild" || key == "collections"
                      ? " (the package's neighbour search follows h within a run: no list "
                        "rebuild settings are needed)"
@@ -124,10 +137,19 @@ FixSPHAstroH::FixSPHAstroH(LAMMPS *lmp, int narg, char **arg) :
   // reneighbouring when h outgrows the lists or the ghost cutoff
   force_reneighbor = 1;
   next_reneighbor = -1;
+  // LAMMPS' brick communication with a shell of its own width in each dimension (nullptr with
+  // comm_style tiled: one cutoff)
+  if (narrow_ghosts_) ghost_comm_ = CommSPHAstro::install(lmp);
 }
 
 FixSPHAstroH::~FixSPHAstroH()
 {
+  // LAMMPS' own brick communication again: CommSPHAstro's code leaves with the plugin, and
+  // LAMMPS deletes its communication after its fixes
+  if (auto *own = dynamic_cast<CommSPHAstro *>(comm)) {
+    if (own->source() == this) own->set_source(nullptr);
+    if (!own->source()) CommSPHAstro::uninstall(lmp);
+  }
   delete state_;
   delete drift_stats_;
 }
@@ -176,6 +198,9 @@ void FixSPHAstroH::init()
   if (raised_) comm->cutghostuser = user_cutghost_;    // (an init without a run since)
   raised_ = false;
   user_cutghost_ = comm->cutghostuser;
+  narrow_ready_ = false;
+  ghost_comm_ = narrow_ghosts_ ? dynamic_cast<CommSPHAstro *>(comm) : nullptr;
+  if (ghost_comm_) ghost_comm_->set_source(this);
   pending_cutoff_ = 0.0;
   // continuing a run (pair sph/astro took its h cap): its ghost cutoff and pending widening
   if (pair_->carried_cap_used()) {
@@ -191,6 +216,9 @@ void FixSPHAstroH::setup(int /*vflag*/)
 {
   in_run_ = true;
   check_limits();
+  // the setup's h iteration ran with the whole shell; the next reneighbouring narrows it (runs
+  // with pre no keep the shells of the run before, and narrow_ready_)
+  narrow_ready_ = ghost_comm_ != nullptr;
   // particles held at the cap by the setup's iteration keep that h for one step
   int capped_local = pair_->h_statistics().capped, capped;
   MPI_Allreduce(&capped_local, &capped, 1, MPI_INT, MPI_SUM, world);
@@ -231,31 +259,168 @@ void FixSPHAstroH::check_limits()
       next_reneighbor = update->ntimestep + 1;
     }
   }
+  check_ghost_widths();
 }
 
-// on the reneighbouring step asked for: a wider ghost shell before LAMMPS exchanges atoms and
-// makes the ghosts (comm->setup(), as LAMMPS does itself when the box changes)
+// the sub-domain faces across which LAMMPS makes ghosts: all but a non-periodic box boundary
+static void ghost_faces(LAMMPS *lmp, bool lo[3], bool hi[3])
+{
+  for (int d = 0; d < 3; d++) {
+    const bool periodic = lmp->domain->periodicity[d] != 0;
+    lo[d] = periodic || lmp->comm->myloc[d] > 0;
+    hi[d] = periodic || lmp->comm->myloc[d] < lmp->comm->procgrid[d] - 1;
+  }
+}
+
+// the pair styles that compute forces: the sub-styles of a hybrid style (found by
+// Force::pair_match over their keywords, with patterns that leave out the name hybrid...), else
+// the style itself
+static std::vector<Pair *> pair_styles(LAMMPS *lmp)
+{
+  std::vector<Pair *> pairs;
+  Pair *pair = lmp->force->pair;
+  if (!dynamic_cast<PairHybrid *>(pair)) {
+    if (pair) pairs.push_back(pair);
+    return pairs;
+  }
+  for (const char *pattern : {"^[^h]", "^h[^y]"})
+    for (int nsub = 1;; nsub++) {
+      Pair *sub = lmp->force->pair_match(pattern, 0, nsub);
+      if (!sub || std::find(pairs.begin(), pairs.end(), sub) != pairs.end()) break;
+      pairs.push_back(sub);
+    }
+  return pairs;
+}
+
+// ghosts narrow: the shell of dimension d must hold, for every pair whose separation crosses a
+// face in d, the partner of each particle; a particle i within r_i of such a face needs
+// r_i = R h_i + skin (its support, atoms having moved up to skin/2 each since the shell was
+// made). The shell is set for max(margin, WIDEN) x the h of now (>= LIST_GROWTH: the reach of
+// the lists, sph_astro_neighbour_lists.h), as the ghost cutoff serves margin x the largest h,
+// and at least the cutoff of the other pair styles (+ skin) and comm_modify cutoff. Returns
+// false where it cannot narrow: molecular systems (bonds cross faces), a pair style other than
+// sph/astro and sph/astro/gravity, neighbour lists of fixes or computes (LAMMPS' one cutoff),
+// and the setup of a run (its h iteration may take h far from the h of the start).
+bool FixSPHAstroH::ghost_widths(double *width)
+{
+  if (!narrow_ready_ || !pair_ || atom->molecular != Atom::ATOMIC) return false;
+  const double skin = neighbor->skin;
+  double floor = user_cutghost_;
+  const std::vector<Pair *> pairs = pair_styles(lmp);
+  for (Pair *pair : pairs) {
+    if (dynamic_cast<PairSPHAstro *>(pair)) continue;
+    auto *gravity = dynamic_cast<PairSPHAstroGravity *>(pair);
+    if (!gravity) return false;
+    // (with MSM its cutoff is the one MSM chose)
+    if (gravity->list_cutoff() > 0.0) floor = MAX(floor, gravity->list_cutoff() + skin);
+  }
+  for (int r = 0; r < neighbor->nrequest; r++) {
+    const void *requestor = neighbor->requests[r]->get_requestor();
+    bool by_pair = false;
+    for (Pair *pair : pairs) by_pair = by_pair || requestor == pair;
+    if (!by_pair) return false;
+  }
+
+  const double R = pair_->kernel_radius();
+  const double reach_per_h = R * MAX(margin_, WIDEN);
+  const double *h = atom->dvector[state_->h];
+  const double *sublo = domain->sublo, *subhi = domain->subhi;
+  double **x = atom->x;
+  bool lo[3], hi[3];
+  ghost_faces(lmp, lo, hi);
+  const int dimension = domain->dimension;
+  double local[3] = {0.0, 0.0, 0.0};
+  for (int i = 0; i < atom->nlocal; i++) {
+    const double reach = reach_per_h * h[i] + skin;
+    for (int d = 0; d < dimension; d++)
+      if ((lo[d] && x[i][d] - sublo[d] < reach) || (hi[d] && subhi[d] - x[i][d] < reach))
+        local[d] = MAX(local[d], reach);
+  }
+  MPI_Allreduce(local, width, 3, MPI_DOUBLE, MPI_MAX, world);
+  for (int d = 0; d < 3; d++) width[d] = d < dimension ? MAX(width[d], floor) : INFINITY;
+  return true;
+}
+
+// ghosts narrow, at the end of every step: a particle whose reach LIST_REBUILD ahead of its h
+// crosses a face past its dimension's shell has LAMMPS reneighbour at the next step, whose
+// pre_exchange sets the shells anew; one whose support R h + skin already crosses it may have
+// missed partners in this step: stop (collective for the first, not the second)
+void FixSPHAstroH::check_ghost_widths()
+{
+  if (!narrow_ready_ || ghost_comm_ != comm || !ghost_comm_->narrowed()) return;
+  const double *width = ghost_comm_->widths();
+  const double R = pair_->kernel_radius(), skin = neighbor->skin;
+  const double ahead_per_h = R * PairSPHAstro::LIST_GROWTH * PairSPHAstro::LIST_REBUILD;
+  const double *h = atom->dvector[state_->h];
+  const double *sublo = domain->sublo, *subhi = domain->subhi;
+  double **x = atom->x;
+  bool lo[3], hi[3];
+  ghost_faces(lmp, lo, hi);
+  const int dimension = domain->dimension;
+  int remake_local = 0;
+  for (int i = 0; i < atom->nlocal; i++) {
+    const double ahead = ahead_per_h * h[i] + skin, support = R * h[i] + skin;
+    for (int d = 0; d < dimension; d++) {
+      if (ahead <= width[d] || !ghost_comm_->narrowed(d)) continue;
+      const double face =
+          MIN(lo[d] ? x[i][d] - sublo[d] : INFINITY, hi[d] ? subhi[d] - x[i][d] : INFINITY);
+      if (face >= ahead) continue;
+      remake_local = 1;
+      if (support > width[d] && face < support)
+        error->one(FLERR,
+                   "fix sph/astro/h: atom {} (h = {:.6g}) reaches {:.6g} across a sub-domain "
+                   "face in dimension {}, past that dimension's ghost shell {:.6g} set at the "
+                   "last reneighbouring; its h grew too fast for ghosts narrow (use a larger "
+                   "margin, now {}, or ghosts full)",
+                   atom->tag[i], h[i], support, d + 1, width[d], margin_);
+    }
+  }
+  int remake;
+  MPI_Allreduce(&remake_local, &remake, 1, MPI_INT, MPI_MAX, world);
+  if (!remake) return;
+  next_reneighbor = update->ntimestep + 1;
+  ghost_remakes_++;
+}
+
+// at a reneighbouring step, before LAMMPS exchanges atoms and makes the ghosts: the ghost
+// cutoff widened if asked for, and with ghosts narrow the shell of each dimension set anew from
+// the h of now (comm->setup(), as LAMMPS does itself when the box changes)
 void FixSPHAstroH::pre_exchange()
 {
-  if (pending_cutoff_ <= 0.0) return;
-  const double old_cutoff = MAX(comm->cutghostuser, neighbor->cutneighmax);
-  if (pending_cutoff_ > old_cutoff) {
-    comm->cutghostuser = pending_cutoff_;
-    comm->setup();
-    ghost_widenings_++;
-    if (comm->me == 0)
-      utils::logmesg(lmp,
-                     "fix sph/astro/h: ghost cutoff widened from {:.6g} to {:.6g} at step {} (h "
-                     "cap {:.6g})\n",
-                     old_cutoff, pending_cutoff_, update->ntimestep,
-                     (pending_cutoff_ - neighbor->skin) / pair_->kernel_radius());
+  bool remake = narrow_ready_ && ghost_comm_ == comm;
+  if (pending_cutoff_ > 0.0) {
+    const double old_cutoff = MAX(comm->cutghostuser, neighbor->cutneighmax);
+    if (pending_cutoff_ > old_cutoff) {
+      comm->cutghostuser = pending_cutoff_;
+      remake = true;
+      ghost_widenings_++;
+      if (comm->me == 0)
+        utils::logmesg(lmp,
+                       "fix sph/astro/h: ghost cutoff widened from {:.6g} to {:.6g} at step {} "
+                       "(h cap {:.6g})\n",
+                       old_cutoff, pending_cutoff_, update->ntimestep,
+                       (pending_cutoff_ - neighbor->skin) / pair_->kernel_radius());
+    }
+    pending_cutoff_ = 0.0;
   }
-  pending_cutoff_ = 0.0;
+  // (a changing box: LAMMPS sets the communication and bins up itself after this)
+  if (!remake || domain->box_change) return;
+  comm->setup();
+  if (neighbor->style) neighbor->setup_bins();
 }
 
 // the next run sets its ghost cutoff from its h; the user's comm_modify cutoff comes back
 void FixSPHAstroH::post_run()
 {
+  if (narrow_ready_ && ghost_comm_ == comm && comm->me == 0) {
+    const double *width = ghost_comm_->widths();
+    utils::logmesg(lmp,
+                   "fix sph/astro/h ghosts narrow: shells {:.6g} {:.6g} {:.6g} wide at the end "
+                   "(ghost cutoff {:.6g}); {} reneighbourings asked for by the shells since the "
+                   "fix was defined\n",
+                   width[0], width[1], domain->dimension == 3 ? width[2] : 0.0,
+                   MAX(comm->cutghostuser, neighbor->cutneighmax), ghost_remakes_);
+  }
   carry();
   in_run_ = raised_ = false;
   comm->cutghostuser = user_cutghost_;
@@ -337,6 +502,7 @@ double FixSPHAstroH::compute_vector(int n)
     return all;
   }
   if (n == 4) return static_cast<double>(ghost_widenings_);
+  if (n == 8) return static_cast<double>(ghost_remakes_);
   if (n == 5) {    // (the extensions are collective: the same count on every rank)
     return static_cast<double>(pair_->search_statistics().extensions);
   }

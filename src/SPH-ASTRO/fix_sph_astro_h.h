@@ -14,6 +14,7 @@ FixStyle(sph/astro/h,FixSPHAstroH);
 #ifndef LMP_FIX_SPH_ASTRO_H_H
 #define LMP_FIX_SPH_ASTRO_H_H
 
+#include "comm_sph_astro.h"
 #include "fix.h"
 
 namespace SPHAstro {
@@ -27,7 +28,7 @@ namespace LAMMPS_NS {
 //   dhdt:    dh/dt = (h/d) div v                     (Benz 1990; Monaghan 1992)
 //   iterate: h = hfact (m/rho)^(1/d) solved with rho(h) by Newton-Raphson with bisection,
 //            grad-h factor Omega in force and energy (Springel & Hernquist 2002; Price 2012)
-class FixSPHAstroH : public Fix {
+class FixSPHAstroH : public Fix, public GhostWidthSource {
  public:
   enum class Mode { DHDT, ITERATE };
 
@@ -58,6 +59,8 @@ class FixSPHAstroH : public Fix {
   // settings pair sph/astro reads at its init: "iterate" (int), "hfact", "tolerance",
   // "maxiter" (int), "margin"
   void *extract(const char *, int &) override;
+  // ghosts narrow: the ghost shell of each dimension (CommSPHAstro)
+  bool ghost_widths(double *width) override;
 
  protected:
   Mode mode_;
@@ -75,6 +78,13 @@ class FixSPHAstroH : public Fix {
   double carried_[4];
   bool in_run_ = false;    // between setup and post_run (carry() reads the run's state)
   bool raised_ = false;    // init raised comm_modify cutoff to the carried one (no run since)
+  // ghosts narrow (default) or full: the shell of each dimension as wide as the reach of the
+  // particles near its faces (set at every reneighbouring from the run's first one on)
+  bool narrow_ghosts_ = true;
+  bool narrow_ready_ = false;    // from a run's setup to the next init: h may set the shells
+  class CommSPHAstro *ghost_comm_ = nullptr;
+  bigint ghost_remakes_ = 0;    // reneighbourings asked for by the shells
+  void check_ghost_widths();
   void carry();
   void check_limits();
   SPHAstro::GradhStatistics *drift_stats_;    // dhdt: the latest drift's capped particles

@@ -53,9 +53,9 @@ PairSPHAstro::PairSPHAstro(LAMMPS *lmp) :
     hstats_(new GradhStatistics()), state_(new StateIndex()), entropy_index_(new EntropyIndex()),
     continuity_index_(new ContinuityIndex()), step_index_(new StepIndex()), active_(nullptr),
     scheme_(new Scheme()), entropy_init_pending_(false), density_init_pending_(false),
-    entropy_gamma_(0.0), alpha_atom_(nullptr), alpha_force_(nullptr), h_cap_start_(0.0),
-    h_cap_(0.0), sph_type_(nullptr), kernel_radius_(2.0), h_failures_(0), counts_step_(-1),
-    computed_step_(-1), computed_nlocal_(-1), comm_table_(new CommTable())
+    entropy_gamma_(0.0), restart_variable_h_(false), alpha_atom_(nullptr), alpha_force_(nullptr),
+    h_cap_start_(0.0), h_cap_(0.0), sph_type_(nullptr), kernel_radius_(2.0), h_failures_(0),
+    counts_step_(-1), computed_step_(-1), computed_nlocal_(-1), comm_table_(new CommTable())
 {
   single_enable = 0;
   restartinfo = 1;

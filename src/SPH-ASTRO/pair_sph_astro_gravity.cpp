@@ -312,7 +312,7 @@ double PairSPHAstroGravity::init_one(int i, int j)
                i, j);
   // direct summation needs neither a neighbour list nor ghost atoms: no cutoff for LAMMPS, so
   // that under hybrid/overlay the lists (and ghost shell) of pair sph/astro keep their size
-  return split_ == Split::NONE ? 0.0 : cut_global_;
+  return list_cutoff();
 }
 
 /* ---------------------------------------------------------------------- */

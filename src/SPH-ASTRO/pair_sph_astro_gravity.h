@@ -58,6 +58,8 @@ class PairSPHAstroGravity : public Pair {
   // softening length of local or ghost atom i: d_h of the SPH state if > 0, else the fixed h
   double softening_length(int i) const;
   double cutoff() const { return cut_global_; }
+  // the cutoff LAMMPS' lists and ghost shell need: none with direct summation
+  double list_cutoff() const { return split_ == Split::NONE ? 0.0 : cut_global_; }
   // direct summation (no kspace) loops over all pairs without a neighbour list, so that
   // neighbour collections sized by h (fix sph/astro/h collections) can serve pair sph/astro
   bool uses_neighbor_list() const { return split_ != Split::NONE; }
