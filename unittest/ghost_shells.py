@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 # SPH-ASTRO - astrophysical SPH for LAMMPS. Distributed under the GNU General Public License
 # version 2 (the same licence as LAMMPS); see the LICENSE file.
-"""Ghost shells: fix sph/astro/h ghosts narrow must give the particles of ghosts full, with fewer ghosts.
+"""Ghost shells: ghosts narrow must give the particles of ghosts full, with fewer ghosts.
 
 Runs examples/SCENE/in.SCENE with `-var ghosts full` and `-var ghosts narrow` on each rank
 count and compares the final dumps field by field by atom ID. The narrow shells hold every

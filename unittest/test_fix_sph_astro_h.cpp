@@ -433,7 +433,8 @@ TEST(NeighbourSearch, HRaisedTenfoldBetweenRunsIsServed)
 
 // ------------------------------------------------------ ghost shells (ghosts narrow)
 
-// the shells of CommSPHAstro (nullptr: LAMMPS' own communication)
+// the shells of CommSPHAstro at the lower and upper faces of x, y, z (nullptr: LAMMPS' own
+// communication)
 static const double *shell_widths(const std::unique_ptr<LAMMPS> &lmp, const int **narrowed)
 {
   int dim;
@@ -460,8 +461,8 @@ struct ShellRun {
   std::map<int, double> x[3], rho;
   int nghost = 0;
   bool custom_comm = false;
-  double widths[3] = {0, 0, 0};
-  int narrowed[3] = {0, 0, 0};
+  double widths[6] = {0, 0, 0, 0, 0, 0};
+  int narrowed[6] = {0, 0, 0, 0, 0, 0};
 };
 
 static ShellRun shell_run(const std::string &ghosts)
@@ -474,9 +475,9 @@ static ShellRun shell_run(const std::string &ghosts)
   const int *narrowed = nullptr;
   const double *widths = shell_widths(lmp, &narrowed);
   run.custom_comm = widths != nullptr;
-  for (int d = 0; widths && d < 3; d++) {
-    run.widths[d] = widths[d];
-    run.narrowed[d] = narrowed[d];
+  for (int k = 0; widths && k < 6; k++) {
+    run.widths[k] = widths[k];
+    run.narrowed[k] = narrowed[k];
   }
   return run;
 }
@@ -488,8 +489,10 @@ TEST(GhostShells, NarrowShellsGiveTheTrajectoryOfTheWholeShell)
   EXPECT_FALSE(whole.custom_comm);    // ghosts full: LAMMPS' own communication
   ASSERT_TRUE(narrow.custom_comm);
   printf("hot spot in a box: %d ghosts with the whole shell, %d with shells %.4g %.4g %.4g\n",
-         whole.nghost, narrow.nghost, narrow.widths[0], narrow.widths[1], narrow.widths[2]);
-  for (int d = 0; d < 3; d++) EXPECT_EQ(narrow.narrowed[d], 1);
+         whole.nghost, narrow.nghost, narrow.widths[0], narrow.widths[2], narrow.widths[4]);
+  for (int k = 0; k < 6; k++) EXPECT_EQ(narrow.narrowed[k], 1);
+  // one rank: each lower face is the upper face of the periodic box
+  for (int d = 0; d < 3; d++) EXPECT_EQ(narrow.widths[2 * d], narrow.widths[2 * d + 1]);
   EXPECT_LT(narrow.nghost, 0.8 * whole.nghost);
   // each density and force sums the same pairs in the same order: the same bits
   for (int col = 0; col < 3; col++) {
@@ -544,7 +547,7 @@ TEST(GhostShells, AnHNearingItsShellRemakesItAndOnePastItStops)
   message = raise_h_at_the_face(1.2, remakes, width, width_after);
   const std::string id = message.substr(0, message.find(':'));
   EXPECT_NE(message.find(id + " (h = "), std::string::npos) << message;
-  EXPECT_NE(message.find("past that dimension's ghost shell"), std::string::npos) << message;
+  EXPECT_NE(message.find("past that face's ghost shell"), std::string::npos) << message;
 }
 
 TEST(FixSPHAstroH, DhdtFollowsTheDivergence)

@@ -12,25 +12,30 @@
 
 namespace LAMMPS_NS {
 
-// What sets the ghost shell of each dimension (fix sph/astro/h): the width, in each dimension,
-// that every pair of the run needs across a sub-domain face (collective). Returns false where
-// the whole ghost cutoff is needed.
+// What sets the ghost shells (fix sph/astro/h): reach[2 d + side] is the largest distance,
+// among this rank's particles near its lower (side 0) or upper (side 1) sub-domain face in
+// dimension d, at which a particle needs its partners across that face (0 where none needs
+// any); floor is what other interactions need across every face. Returns false where the whole
+// ghost cutoff is needed (the same answer on every rank).
 class GhostWidthSource {
  public:
-  virtual bool ghost_widths(double *width) = 0;
+  virtual bool ghost_reaches(double *reach, double &floor) = 0;
 
  protected:
   ~GhostWidthSource() = default;    // (not deleted through this interface)
 };
 
-// LAMMPS' brick communication with a ghost shell as wide as each dimension needs: after
-// CommBrick sets its swaps for the one ghost cutoff, the slab each swap sends in dimension d is
-// cut to width[d] from the sub-domain face (never widened). A pair whose separation crosses a
-// face in d is then still held by both ranks when width[d] covers the reach of every particle
-// within its reach of such a face; the source computes that. With one cutoff for all atoms
-// and all dimensions, a hot cavity's h would set the shell along every face of every rank
-// (Sedov: 4 ghosts per owned particle on 2 ranks, 3/4 of them periodic images of cold gas).
-// Orthogonal boxes and comm_modify mode single only; otherwise the shell is CommBrick's.
+// LAMMPS' brick communication with a ghost shell at each sub-domain face as wide as the
+// particles on both sides of that face reach: after CommBrick sets its swaps for the one ghost
+// cutoff, the slab each swap sends across a face is cut to that face's width (never widened).
+// A pair whose separation crosses a face is then held by both ranks when the width covers the
+// reach of every particle within its reach of the face, on either side; the source gives each
+// rank's reaches, and the two ranks of a face take the larger (MPI_Sendrecv with the
+// neighbours CommBrick swaps with; a dimension whose cutoff spans more than one sub-domain
+// takes the largest over all ranks). With one cutoff for all atoms and all dimensions, a hot
+// cavity's h would set the shell along every face of every rank (Sedov: 4 ghosts per owned
+// particle on 2 ranks, most of them periodic images of cold gas). Orthogonal boxes and
+// comm_modify mode single only; otherwise the shells are CommBrick's.
 class CommSPHAstro : public CommBrick {
  public:
   CommSPHAstro(class LAMMPS *, class Comm *);
@@ -45,18 +50,19 @@ class CommSPHAstro : public CommBrick {
 
   void set_source(GhostWidthSource *source) { source_ = source; }
   GhostWidthSource *source() const { return source_; }
-  // the widths of the latest setup (the whole cutoff where not narrowed), whether dimension d
-  // was narrowed, and whether any was
-  const double *widths() const { return cutghost; }
-  bool narrowed(int d) const { return narrowed_dim_[d] != 0; }
-  bool narrowed() const { return narrowed_dim_[0] || narrowed_dim_[1] || narrowed_dim_[2]; }
-  // also through LAMMPS' Comm interface: "sph/astro/widths" (3 doubles), "sph/astro/narrowed"
-  // (3 ints)
+  // the shells of the latest setup: the width at the lower (side 0) or upper (side 1) face in
+  // dimension d (the whole cutoff where not narrowed), and whether it was narrowed
+  double width(int d, int side) const { return width_[2 * d + side]; }
+  bool narrowed(int d, int side) const { return narrowed_[2 * d + side] != 0; }
+  bool narrowed() const;
+  // also through LAMMPS' Comm interface: "sph/astro/widths" and "sph/astro/narrowed" (6 doubles
+  // and 6 ints, lower and upper face of x, y, z)
   void *extract(const char *, int &) override;
 
  private:
   GhostWidthSource *source_ = nullptr;
-  int narrowed_dim_[3] = {0, 0, 0};
+  double width_[6] = {0, 0, 0, 0, 0, 0};
+  int narrowed_[6] = {0, 0, 0, 0, 0, 0};
 };
 
 }    // namespace LAMMPS_NS

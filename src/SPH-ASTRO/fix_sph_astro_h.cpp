@@ -32,7 +32,7 @@
 // 4 particles held at the h cap in the latest pass, 5 ghost-cutoff widenings, 6 reneighbourings
 // asked for because an h neared its lists' limit, 7 list builds inside a step because an h
 // outgrew its lists, 8 h iterations that went past their list's limit (summed over ranks) and
-// 9 reneighbourings asked for because an h neared its dimension's ghost shell (ghosts narrow);
+// 9 reneighbourings asked for because an h neared its face's ghost shell (ghosts narrow);
 // 5-9 since the fix was defined.
 
 #include "fix_sph_astro_h.h"
@@ -137,7 +137,7 @@ FixSPHAstroH::FixSPHAstroH(LAMMPS *lmp, int narg, char **arg) :
   // reneighbouring when h outgrows the lists or the ghost cutoff
   force_reneighbor = 1;
   next_reneighbor = -1;
-  // LAMMPS' brick communication with a shell of its own width in each dimension (nullptr with
+  // LAMMPS' brick communication with a shell of its own width at each face (nullptr with
   // comm_style tiled: one cutoff)
   if (narrow_ghosts_) ghost_comm_ = CommSPHAstro::install(lmp);
 }
@@ -235,18 +235,24 @@ void FixSPHAstroH::end_of_step()
   check_limits();
 }
 
-// widen the ghost cutoff if the largest h came near h_cap (collective; an h that outgrows its
-// lists inside a step has them extended there: sph_astro_neighbour_lists.h)
+// widen the ghost cutoff if the largest h came near h_cap, and with ghosts narrow make the
+// shells anew if an h came near its face's shell (collective; an h that outgrows its lists
+// inside a step has them extended there: sph_astro_neighbour_lists.h)
 void FixSPHAstroH::check_limits()
 {
   const double *h = atom->dvector[state_->h];
   const int *mask = atom->mask;
   const double grow = PairSPHAstro::LIST_REBUILD;
   const double cap = pair_->h_cap();
-  double hmax_local = 0.0, hmax;
+  double local[2] = {0.0, shells_overrun() ? 1.0 : 0.0}, all[2];
   for (int i = 0; i < atom->nlocal; i++)
-    if (mask[i] & groupbit) hmax_local = MAX(hmax_local, h[i]);
-  MPI_Allreduce(&hmax_local, &hmax, 1, MPI_DOUBLE, MPI_MAX, world);
+    if (mask[i] & groupbit) local[0] = MAX(local[0], h[i]);
+  MPI_Allreduce(local, all, 2, MPI_DOUBLE, MPI_MAX, world);
+  const double hmax = all[0];
+  if (all[1] > 0.0) {    // ghosts narrow: the shells made anew at the next step
+    next_reneighbor = update->ntimestep + 1;
+    ghost_remakes_++;
+  }
   if (grow * hmax > cap && cap < h_max_) {
     // the new cap: room to grow, at most hmax and at most what half the shortest periodic box
     // side serves (a kernel wider than that sees a particle's own images)
@@ -259,18 +265,32 @@ void FixSPHAstroH::check_limits()
       next_reneighbor = update->ntimestep + 1;
     }
   }
-  check_ghost_widths();
 }
 
-// the sub-domain faces across which LAMMPS makes ghosts: all but a non-periodic box boundary
-static void ghost_faces(LAMMPS *lmp, bool lo[3], bool hi[3])
-{
-  for (int d = 0; d < 3; d++) {
-    const bool periodic = lmp->domain->periodicity[d] != 0;
-    lo[d] = periodic || lmp->comm->myloc[d] > 0;
-    hi[d] = periodic || lmp->comm->myloc[d] < lmp->comm->procgrid[d] - 1;
+// the faces of this rank's sub-domain, k = 2 d + side (side 0 lower, 1 upper): LAMMPS makes
+// ghosts across all but a non-periodic box boundary
+namespace {
+struct SubdomainFaces {
+  const double *sublo, *subhi;
+  bool ghosts[6];
+  int count;    // 2 x dimension
+  explicit SubdomainFaces(LAMMPS *lmp) :
+      sublo(lmp->domain->sublo), subhi(lmp->domain->subhi), count(2 * lmp->domain->dimension)
+  {
+    for (int d = 0; d < 3; d++) {
+      const bool periodic = lmp->domain->periodicity[d] != 0;
+      ghosts[2 * d] = periodic || lmp->comm->myloc[d] > 0;
+      ghosts[2 * d + 1] = periodic || lmp->comm->myloc[d] < lmp->comm->procgrid[d] - 1;
+    }
   }
-}
+  // the distance of x from face k (negative outside the sub-domain)
+  double distance(const double *x, int k) const
+  {
+    const int d = k / 2;
+    return k % 2 ? subhi[d] - x[d] : x[d] - sublo[d];
+  }
+};
+}    // namespace
 
 // the pair styles that compute forces: the sub-styles of a hybrid style (found by
 // Force::pair_match over their keywords, with patterns that leave out the name hybrid...), else
@@ -292,20 +312,20 @@ static std::vector<Pair *> pair_styles(LAMMPS *lmp)
   return pairs;
 }
 
-// ghosts narrow: the shell of dimension d must hold, for every pair whose separation crosses a
-// face in d, the partner of each particle; a particle i within r_i of such a face needs
-// r_i = R h_i + skin (its support, atoms having moved up to skin/2 each since the shell was
-// made). The shell is set for max(margin, WIDEN) x the h of now (>= LIST_GROWTH: the reach of
-// the lists, sph_astro_neighbour_lists.h), as the ghost cutoff serves margin x the largest h,
-// and at least the cutoff of the other pair styles (+ skin) and comm_modify cutoff. Returns
-// false where it cannot narrow: molecular systems (bonds cross faces), a pair style other than
-// sph/astro and sph/astro/gravity, neighbour lists of fixes or computes (LAMMPS' one cutoff),
-// and the setup of a run (its h iteration may take h far from the h of the start).
-bool FixSPHAstroH::ghost_widths(double *width)
+// ghosts narrow: the shell at a sub-domain face must hold, for every pair whose separation
+// crosses it, the partner of each particle; a particle i within r_i of the face needs
+// r_i = R h_i + skin (its support; atoms move up to skin/2 each between reneighbourings). The
+// reach given for it is max(margin, WIDEN) R h_i + skin with the h of now (>= LIST_GROWTH: the
+// reach of the lists, sph_astro_neighbour_lists.h), as the ghost cutoff serves margin x the
+// largest h; floor: the cutoff of the other pair styles (+ skin) and comm_modify cutoff.
+// Returns false where it cannot narrow: molecular systems (bonds cross faces), a pair style
+// other than sph/astro and sph/astro/gravity, neighbour lists of fixes or computes (LAMMPS'
+// one cutoff), and the setup of a run (its h iteration may take h far from the h of the start).
+bool FixSPHAstroH::ghost_reaches(double *reach, double &floor)
 {
   if (!narrow_ready_ || !pair_ || atom->molecular != Atom::ATOMIC) return false;
   const double skin = neighbor->skin;
-  double floor = user_cutghost_;
+  floor = user_cutghost_;
   const std::vector<Pair *> pairs = pair_styles(lmp);
   for (Pair *pair : pairs) {
     if (dynamic_cast<PairSPHAstro *>(pair)) continue;
@@ -316,74 +336,63 @@ bool FixSPHAstroH::ghost_widths(double *width)
   }
   for (int r = 0; r < neighbor->nrequest; r++) {
     const void *requestor = neighbor->requests[r]->get_requestor();
-    bool by_pair = false;
-    for (Pair *pair : pairs) by_pair = by_pair || requestor == pair;
-    if (!by_pair) return false;
+    if (std::find(pairs.begin(), pairs.end(), requestor) == pairs.end()) return false;
   }
 
-  const double R = pair_->kernel_radius();
-  const double reach_per_h = R * MAX(margin_, WIDEN);
+  const double reach_per_h = pair_->kernel_radius() * MAX(margin_, WIDEN);
   const double *h = atom->dvector[state_->h];
-  const double *sublo = domain->sublo, *subhi = domain->subhi;
   double **x = atom->x;
-  bool lo[3], hi[3];
-  ghost_faces(lmp, lo, hi);
-  const int dimension = domain->dimension;
-  double local[3] = {0.0, 0.0, 0.0};
+  const SubdomainFaces faces(lmp);
+  for (int k = 0; k < 6; k++) reach[k] = 0.0;
   for (int i = 0; i < atom->nlocal; i++) {
-    const double reach = reach_per_h * h[i] + skin;
-    for (int d = 0; d < dimension; d++)
-      if ((lo[d] && x[i][d] - sublo[d] < reach) || (hi[d] && subhi[d] - x[i][d] < reach))
-        local[d] = MAX(local[d], reach);
+    const double r = reach_per_h * h[i] + skin;
+    for (int k = 0; k < faces.count; k++)
+      if (faces.ghosts[k] && faces.distance(x[i], k) < r) reach[k] = MAX(reach[k], r);
   }
-  MPI_Allreduce(local, width, 3, MPI_DOUBLE, MPI_MAX, world);
-  for (int d = 0; d < 3; d++) width[d] = d < dimension ? MAX(width[d], floor) : INFINITY;
   return true;
 }
 
-// ghosts narrow, at the end of every step: a particle whose reach LIST_REBUILD ahead of its h
-// crosses a face past its dimension's shell has LAMMPS reneighbour at the next step, whose
-// pre_exchange sets the shells anew; one whose support R h + skin already crosses it may have
-// missed partners in this step: stop (collective for the first, not the second)
-void FixSPHAstroH::check_ghost_widths()
+// ghosts narrow, at the end of every step (check_limits): does a particle of this rank reach,
+// LIST_REBUILD ahead of its h, across a face past that face's shell (then LAMMPS reneighbours
+// at the next step, whose pre_exchange sets the shells anew)? One whose support R h + skin
+// already crosses it may have missed partners in this step: stop
+bool FixSPHAstroH::shells_overrun()
 {
-  if (!narrow_ready_ || ghost_comm_ != comm || !ghost_comm_->narrowed()) return;
-  const double *width = ghost_comm_->widths();
+  if (!narrow_ready_ || ghost_comm_ != comm || !ghost_comm_->narrowed()) return false;
   const double R = pair_->kernel_radius(), skin = neighbor->skin;
   const double ahead_per_h = R * PairSPHAstro::LIST_GROWTH * PairSPHAstro::LIST_REBUILD;
   const double *h = atom->dvector[state_->h];
-  const double *sublo = domain->sublo, *subhi = domain->subhi;
   double **x = atom->x;
-  bool lo[3], hi[3];
-  ghost_faces(lmp, lo, hi);
-  const int dimension = domain->dimension;
-  int remake_local = 0;
+  const SubdomainFaces faces(lmp);
+  double width[6];
+  bool watched[6];
+  for (int k = 0; k < 6; k++) {
+    width[k] = ghost_comm_->width(k / 2, k % 2);
+    watched[k] = faces.ghosts[k] && ghost_comm_->narrowed(k / 2, k % 2);
+  }
+  bool overrun = false;
   for (int i = 0; i < atom->nlocal; i++) {
     const double ahead = ahead_per_h * h[i] + skin, support = R * h[i] + skin;
-    for (int d = 0; d < dimension; d++) {
-      if (ahead <= width[d] || !ghost_comm_->narrowed(d)) continue;
-      const double face =
-          MIN(lo[d] ? x[i][d] - sublo[d] : INFINITY, hi[d] ? subhi[d] - x[i][d] : INFINITY);
-      if (face >= ahead) continue;
-      remake_local = 1;
-      if (support > width[d] && face < support)
+    for (int k = 0; k < faces.count; k++) {
+      if (!watched[k] || ahead <= width[k]) continue;
+      const double distance = faces.distance(x[i], k);
+      if (distance >= ahead) continue;
+      overrun = true;
+      if (support > width[k] && distance < support)
         error->one(FLERR,
-                   "fix sph/astro/h: atom {} (h = {:.6g}) reaches {:.6g} across a sub-domain "
-                   "face in dimension {}, past that dimension's ghost shell {:.6g} set at the "
-                   "last reneighbouring; its h grew too fast for ghosts narrow (use a larger "
+                   "fix sph/astro/h: atom {} (h = {:.6g}) reaches {:.6g} across its {} "
+                   "sub-domain face in dimension {}, past that face's ghost shell {:.6g} set at "
+                   "the last reneighbouring; its h grew too fast for ghosts narrow (use a larger "
                    "margin, now {}, or ghosts full)",
-                   atom->tag[i], h[i], support, d + 1, width[d], margin_);
+                   atom->tag[i], h[i], support, k % 2 ? "upper" : "lower", k / 2 + 1, width[k],
+                   margin_);
     }
   }
-  int remake;
-  MPI_Allreduce(&remake_local, &remake, 1, MPI_INT, MPI_MAX, world);
-  if (!remake) return;
-  next_reneighbor = update->ntimestep + 1;
-  ghost_remakes_++;
+  return overrun;
 }
 
 // at a reneighbouring step, before LAMMPS exchanges atoms and makes the ghosts: the ghost
-// cutoff widened if asked for, and with ghosts narrow the shell of each dimension set anew from
+// cutoff widened if asked for, and with ghosts narrow the shell of each face set anew from
 // the h of now (comm->setup(), as LAMMPS does itself when the box changes)
 void FixSPHAstroH::pre_exchange()
 {
@@ -413,13 +422,17 @@ void FixSPHAstroH::pre_exchange()
 void FixSPHAstroH::post_run()
 {
   if (narrow_ready_ && ghost_comm_ == comm && comm->me == 0) {
-    const double *width = ghost_comm_->widths();
+    const char axes[] = "xyz";
+    std::string shells;
+    for (int d = 0; d < domain->dimension; d++) {
+      const double lower = ghost_comm_->width(d, 0), upper = ghost_comm_->width(d, 1);
+      shells += fmt::format("{}{} {:.6g} {:.6g}", d ? ", " : "", axes[d], lower, upper);
+    }
     utils::logmesg(lmp,
-                   "fix sph/astro/h ghosts narrow: shells {:.6g} {:.6g} {:.6g} wide at the end "
-                   "(ghost cutoff {:.6g}); {} reneighbourings asked for by the shells since the "
-                   "fix was defined\n",
-                   width[0], width[1], domain->dimension == 3 ? width[2] : 0.0,
-                   MAX(comm->cutghostuser, neighbor->cutneighmax), ghost_remakes_);
+                   "fix sph/astro/h ghosts narrow: shells at the lower and upper faces {} at the "
+                   "end on rank 0 (ghost cutoff {:.6g}); {} reneighbourings asked for by the "
+                   "shells since the fix was defined\n",
+                   shells, MAX(comm->cutghostuser, neighbor->cutneighmax), ghost_remakes_);
   }
   carry();
   in_run_ = raised_ = false;

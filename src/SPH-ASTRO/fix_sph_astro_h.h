@@ -59,8 +59,8 @@ class FixSPHAstroH : public Fix, public GhostWidthSource {
   // settings pair sph/astro reads at its init: "iterate" (int), "hfact", "tolerance",
   // "maxiter" (int), "margin"
   void *extract(const char *, int &) override;
-  // ghosts narrow: the ghost shell of each dimension (CommSPHAstro)
-  bool ghost_widths(double *width) override;
+  // ghosts narrow: what the ghost shell at each sub-domain face must hold (CommSPHAstro)
+  bool ghost_reaches(double *reach, double &floor) override;
 
  protected:
   Mode mode_;
@@ -78,13 +78,13 @@ class FixSPHAstroH : public Fix, public GhostWidthSource {
   double carried_[4];
   bool in_run_ = false;    // between setup and post_run (carry() reads the run's state)
   bool raised_ = false;    // init raised comm_modify cutoff to the carried one (no run since)
-  // ghosts narrow (default) or full: the shell of each dimension as wide as the reach of the
-  // particles near its faces (set at every reneighbouring from the run's first one on)
+  // ghosts narrow (default) or full: the shell at each sub-domain face as wide as the reach of
+  // the particles near it (set at every reneighbouring from the run's first one on)
   bool narrow_ghosts_ = true;
   bool narrow_ready_ = false;    // from a run's setup to the next init: h may set the shells
   class CommSPHAstro *ghost_comm_ = nullptr;
   bigint ghost_remakes_ = 0;    // reneighbourings asked for by the shells
-  void check_ghost_widths();
+  bool shells_overrun();
   void carry();
   void check_limits();
   SPHAstro::GradhStatistics *drift_stats_;    // dhdt: the latest drift's capped particles
