@@ -364,15 +364,17 @@ bool FixSPHAstroH::shells_overrun()
   const double *h = atom->dvector[state_->h];
   double **x = atom->x;
   const SubdomainFaces faces(lmp);
-  double width[6];
+  double width[6], narrowest = INFINITY;
   bool watched[6];
   for (int k = 0; k < 6; k++) {
     width[k] = ghost_comm_->width(k / 2, k % 2);
     watched[k] = faces.ghosts[k] && ghost_comm_->narrowed(k / 2, k % 2);
+    if (watched[k]) narrowest = MIN(narrowest, width[k]);
   }
   bool overrun = false;
   for (int i = 0; i < atom->nlocal; i++) {
     const double ahead = ahead_per_h * h[i] + skin, support = R * h[i] + skin;
+    if (ahead <= narrowest) continue;    // (most particles: within every shell)
     for (int k = 0; k < faces.count; k++) {
       if (!watched[k] || ahead <= width[k]) continue;
       const double distance = faces.distance(x[i], k);
