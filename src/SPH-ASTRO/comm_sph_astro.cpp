@@ -61,9 +61,12 @@ void CommSPHAstro::setup()
   if (!source_->ghost_reaches(reach, floor)) return;
 
   // the two ranks of a face take the larger of their reaches: my lower face is my lower
-  // neighbour's upper face (a rank alone in a periodic dimension is its own neighbour)
+  // neighbour's upper face (a rank alone in a periodic dimension is its own neighbour); the
+  // largest over all ranks only where a cutoff spans more than one sub-domain (maxneed is the
+  // same on every rank)
   double largest[6];
-  MPI_Allreduce(reach, largest, 6, MPI_DOUBLE, MPI_MAX, world);
+  if (std::max({maxneed[0], maxneed[1], maxneed[2]}) > 1)
+    MPI_Allreduce(reach, largest, 6, MPI_DOUBLE, MPI_MAX, world);
   for (int d = 0; d < 3; d++) {
     double from_lower = 0.0, from_upper = 0.0;
     MPI_Sendrecv(&reach[2 * d + 1], 1, MPI_DOUBLE, procneigh[d][1], 0, &from_lower, 1, MPI_DOUBLE,

@@ -60,9 +60,6 @@ class PairSPHAstroGravity : public Pair {
   double cutoff() const { return cut_global_; }
   // the cutoff LAMMPS' lists and ghost shell need: none with direct summation
   double list_cutoff() const { return split_ == Split::NONE ? 0.0 : cut_global_; }
-  // direct summation (no kspace) loops over all pairs without a neighbour list, so that
-  // neighbour collections sized by h (fix sph/astro/h collections) can serve pair sph/astro
-  bool uses_neighbor_list() const { return split_ != Split::NONE; }
   // the adaptive-softening terms were part of the latest force evaluation
   bool zeta_active() const { return zeta_active_; }
 
