@@ -360,28 +360,41 @@ TEST(GravityPair, ZetaOfTheDirectSumIsTheSumOverAllPairs)
   EXPECT_GT(inside, 20 * n);    // each atom has its kernel neighbours
 }
 
-// individual timesteps (a ball with a hot core): the gravity pair leaves out the pairs of two
-// inactive atoms unless the energy is tallied; the active atoms' forces, and so the run, do not depend on it (thermo
-// output at every step tallies the energy at every step)
+// individual timesteps (a ball with a hot core): the gravity pair sums forces only for pairs
+// with an active atom, and with the energy tallied (direct summation) only the potential of
+// the others; per-atom energies need every pair. Three runs: nothing tallied between the
+// thermo rows, the energy at every step, the energy and per-atom energies at every step. The
+// active atoms' forces, and so the runs, are the same bit for bit, and the energy of the second
+// run is that of the third at every step
 class GravityIndividualSteps : public ::testing::TestWithParam<const char *> {};
 
 TEST_P(GravityIndividualSteps, PairsOfInactiveAtomsDoNotChangeTheRun)
 {
   const bool msm = std::string(GetParam()) == "msm";
-  std::map<int, double> x[2], v[2];
+  enum { QUIET, ENERGY, PERATOM };
+  std::map<int, double> x[3], v[3];
+  std::vector<double> pe[3];
   double bins = 0.0, updates = 0.0, steps = 0.0, natoms = 0.0;
-  for (int every : {1, 1000}) {
+  for (int mode : {QUIET, ENERGY, PERATOM}) {
     auto lmp = open_lammps();
     falling_ball(lmp, msm ? "1.5" : "30", "courant 0.3 steps individual tend 0.4");
     if (msm) commands(lmp, {"kspace_style msm/sph/astro/gravity 1e-5"});
     // a hot core: its particles step short, the cold ones long
     commands(lmp, {"region core sphere 0 0 0 1.0 units box", "set region core d_u 3.0"});
-    commands(lmp,
-             {"thermo_style custom step c_sum[12] f_gas[5]", "thermo " + std::to_string(every),
-              "run 100000"});
-    const int k = every == 1 ? 0 : 1;
-    x[k] = per_atom(lmp, "x", 0);
-    v[k] = per_atom(lmp, "v", 1);
+    if (mode == ENERGY)
+      commands(lmp, {"compute e all pe", "variable e equal c_e", "fix rec all vector 1 v_e v_e"});
+    if (mode == PERATOM)
+      commands(lmp,
+               {"compute e all pe", "variable e equal c_e", "compute ea all pe/atom",
+                "compute esum all reduce sum c_ea", "variable ea equal c_esum",
+                "fix rec all vector 1 v_e v_ea"});
+    commands(lmp, {"thermo_style custom step c_sum[12] f_gas[5]", "thermo 1000", "run 100000"});
+    x[mode] = per_atom(lmp, "x", 0);
+    v[mode] = per_atom(lmp, "v", 1);
+    if (mode != QUIET) {
+      auto *rec = lmp->modify->get_fix_by_id("rec");
+      for (int r = 0; r < rec->size_array_rows; r++) pe[mode].push_back(rec->compute_array(r, 0));
+    }
     bins = lmp->modify->get_fix_by_id("gas")->compute_vector(5);
     updates = lmp->modify->get_fix_by_id("gas")->compute_vector(6);
     steps = static_cast<double>(lmp->update->ntimestep);
@@ -390,11 +403,17 @@ TEST_P(GravityIndividualSteps, PairsOfInactiveAtomsDoNotChangeTheRun)
   // several bins, so that most steps evaluate a part of the atoms
   EXPECT_GE(bins, 2.0);
   EXPECT_LT(updates, 0.75 * steps * natoms) << updates << " updates in " << steps << " steps";
-  ASSERT_EQ(x[0].size(), x[1].size());
-  for (const auto &[id, value] : x[0]) {
-    EXPECT_EQ(x[1][id], value) << "atom " << id;
-    EXPECT_EQ(v[1][id], v[0][id]) << "atom " << id;
+  for (int mode : {ENERGY, PERATOM}) {
+    ASSERT_EQ(x[QUIET].size(), x[mode].size());
+    for (const auto &[id, value] : x[QUIET]) {
+      EXPECT_EQ(x[mode][id], value) << "atom " << id << ", run " << mode;
+      EXPECT_EQ(v[mode][id], v[QUIET][id]) << "atom " << id << ", run " << mode;
+    }
   }
+  ASSERT_EQ(pe[ENERGY].size(), pe[PERATOM].size());
+  ASSERT_GT(pe[ENERGY].size(), 10U);
+  for (std::size_t r = 0; r < pe[ENERGY].size(); r++)
+    EXPECT_NEAR(pe[ENERGY][r], pe[PERATOM][r], 1e-12 * std::fabs(pe[PERATOM][r])) << "step " << r;
 }
 
 INSTANTIATE_TEST_SUITE_P(GravityPair, GravityIndividualSteps, ::testing::Values("direct", "msm"));

@@ -326,6 +326,10 @@ void PairSPHAstroGravity::compute(int eflag, int vflag)
     comm->forward_comm(this);
   }
   if (split_ == Split::NONE) gather_all();
+  // individual timesteps: forces only for the pairs with an active atom, unless the virial or
+  // per-atom energies are tallied (they need every pair's force)
+  active_pairs_only_ =
+      split_ == Split::NONE && sph_ && sph_->active_flags() && !vflag_either && !eflag_atom;
   zeta_active_ = zeta_terms_apply();
   if (zeta_active_) compute_zeta();
   const bool cubic = kernel_ == KernelType::CUBIC;
@@ -462,8 +466,35 @@ void PairSPHAstroGravity::compute_zeta()
       zeta_points_[gj] = all + 5 * gj;
       zeta_index_[gj] = gj;
     }
+    // individual timesteps: eval() sums only pairs with an active atom, and uses zeta_j only
+    // within R max(h_i, h_j) of one: zeta of the active atoms and of those within that reach of
+    // one (each active atom's gather and scatter neighbours, found by the tree with the radii
+    // R h_j), unless the virial or per-atom energies are tallied or most atoms are active
+    const char *active_all = active_pairs_only_ ? active_all_.data() : nullptr;
+    int nactive = n;
+    if (active_all) nactive = static_cast<int>(n - std::count(active_all, active_all + n, 0));
+    const bool select = 2 * nactive < n;
+    if (select)
+      for (int gj = 0; gj < n; gj++) zeta_radii_[gj] = R * all[5 * gj + 4] * (1.0 + 1e-10);
     zeta_tree_->build(zeta_points_.data(), zeta_radii_.data(), zeta_index_.data(), n);
+    if (select) {
+      const int first = offset_, last = offset_ + nlocal;
+      zeta_needed_.assign(nlocal, 0);
+      for (int gk = 0; gk < n; gk++) {
+        if (!active_all[gk]) continue;
+        zeta_tree_->query(zeta_points_.data(), zeta_radii_.data(), all + 5 * gk, zeta_radii_[gk],
+                          0.0, 0.0, [&](int gj, double) {
+                            if (gj >= first && gj < last) zeta_needed_[gj - first] = 1;
+                          });
+      }
+      zeta_radii_.assign(n, 0.0);    // the gathers below: within R h_i alone
+      zeta_tree_->update_radii(zeta_radii_.data());
+    }
     for (int i = 0; i < nlocal; i++) {
+      if (select && !zeta_needed_[i] && !active_all[offset_ + i]) {
+        zeta_[i] = 0.0;    // not used this step
+        continue;
+      }
       const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
       const double hi = h[i] > 0.0 ? h[i] : hfix;
       const double Rhsq = R * R * hi * hi;
@@ -623,26 +654,30 @@ template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int e
     const double *zo_all = ZETA ? zo_all_.data() : nullptr;
     const int n = ntotal_;
     const int first = offset_, last = offset_ + nlocal;
-    // individual timesteps: the forces of inactive atoms are not used, so pairs of two inactive
-    // atoms are left out (unless energy or virial are tallied); an active atom's force sums
-    // the same terms in the same order either way
-    const char *active_all = (sph_ && sph_->active_flags() && !evflag) ? active_all_.data()
-                                                                       : nullptr;
+    // individual timesteps (active_pairs_only_): the forces of inactive atoms are not used, so
+    // an inactive atom's row sums forces only with this rank's active atoms after it (for their
+    // forces; pairs with active atoms of other ranks are summed in those atoms' rows there) and,
+    // with energy tallied, the potential alone of its other pairs; an active atom's force sums
+    // the same terms in the same order as with every pair
+    const char *active_all = active_pairs_only_ ? active_all_.data() : nullptr;
+    if (active_all) {
+      active_mine_.clear();
+      for (int j = 0; j < nlocal; j++)
+        if (active_all[first + j]) active_mine_.push_back(j);
+    }
+    const double RR = R * R;
     for (int i = 0; i < nlocal; i++) {
       const int gi = first + i;
       const double *ai = all + 5 * gi;
       const double xi = ai[0], yi = ai[1], zi = ai[2], mi = ai[3], hi = ai[4];
       const double zoi = ZETA ? zo_all[gi] : 0.0;
-      const char *partner_active = (active_all && !active_all[gi]) ? active_all : nullptr;
       double fxi = 0.0, fyi = 0.0, fzi = 0.0;
-      for (int gj = 0; gj < n; gj++) {
-        const bool mine = gj >= first && gj < last;
-        if (mine && gj <= gi) continue;    // in-rank pairs once
-        if (partner_active && !partner_active[gj]) continue;
+      auto pair = [&](int gj) __attribute__((always_inline))
+      {
         const double *aj = all + 5 * gj;
         const double delx = xi - aj[0], dely = yi - aj[1], delz = zi - aj[2];
         const double rsq = delx * delx + dely * dely + delz * delz;
-        if (rsq >= cutsq) continue;
+        if (rsq >= cutsq) return;
         double e, D;
         pair_term(rsq, hi, aj[4], zoi, ZETA ? zo_all[gj] : 0.0, e, D);
         const double mm = G * mi * aj[3];
@@ -650,14 +685,52 @@ template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int e
         fxi += delx * fpair;
         fyi += dely * fpair;
         fzi += delz * fpair;
+        const bool mine = gj >= first && gj < last;
         if (mine) {
           const int j = gj - first;
           f[j][0] -= delx * fpair;
           f[j][1] -= dely * fpair;
           f[j][2] -= delz * fpair;
-          if (evflag) ev_tally(i, j, nlocal, 1, eflag ? mm * e : 0.0, 0.0, fpair, delx, dely, delz);
-        } else if (evflag)    // the other rank tallies the other half
+        }
+        // pairs with atoms of other ranks: the other rank tallies the other half
+        if (active_all) {
+          if (eflag_global) eng_vdwl += mine ? mm * e : 0.5 * mm * e;
+        } else if (mine) {
+          if (evflag)
+            ev_tally(i, gj - first, nlocal, 1, eflag ? mm * e : 0.0, 0.0, fpair, delx, dely, delz);
+        } else if (evflag)
           ev_tally(i, nlocal, nlocal, 0, eflag ? mm * e : 0.0, 0.0, fpair, delx, dely, delz);
+      };
+      // the potential of a pair without its force (per G m_i m_j): softened within the
+      // support, -1/r beyond it
+      auto potential = [&](int gj) {
+        const double *aj = all + 5 * gj;
+        const double delx = xi - aj[0], dely = yi - aj[1], delz = zi - aj[2];
+        const double rsq = delx * delx + dely * dely + delz * delz;
+        if (rsq >= cutsq) return 0.0;
+        const double hj = aj[4], hmax = MAX(hi, hj);
+        double e = 0.0;
+        if (rsq < RR * hmax * hmax) {
+          double D;
+          pair_term(rsq, hi, hj, 0.0, 0.0, e, D);
+        } else
+          e = -1.0 / std::sqrt(rsq);
+        return G * mi * aj[3] * e;
+      };
+      if (active_all && !active_all[gi]) {
+        auto after = std::upper_bound(active_mine_.begin(), active_mine_.end(), i);
+        for (auto it = after; it != active_mine_.end(); ++it) pair(first + *it);
+        if (eflag_global) {
+          double half = 0.0, whole = 0.0;
+          for (int gj = 0; gj < first; gj++) half += potential(gj);
+          for (int gj = gi + 1; gj < last; gj++)
+            if (!active_all[gj]) whole += potential(gj);
+          for (int gj = last; gj < n; gj++) half += potential(gj);
+          eng_vdwl += whole + 0.5 * half;
+        }
+      } else {
+        for (int gj = 0; gj < first; gj++) pair(gj);
+        for (int gj = gi + 1; gj < n; gj++) pair(gj);    // in-rank pairs once
       }
       f[i][0] += fxi;
       f[i][1] += fyi;

@@ -101,11 +101,14 @@ class PairSPHAstroGravity : public Pair {
   std::vector<double> all_, zo_all_;
   // individual timesteps (pair sph/astro's active flags): the flags of all atoms (gathered)
   std::vector<char> active_all_;
+  bool active_pairs_only_ = false;    // individual timesteps: see compute()
+  std::vector<int> active_mine_;      // this rank's active atoms (eval)
   // zeta of the gathered atoms: a tree over their positions finds each one's kernel neighbours
   SPHAstro::NeighbourTree *zeta_tree_;
   std::vector<double *> zeta_points_;
   std::vector<double> zeta_radii_;
   std::vector<int> zeta_index_, zeta_found_;
+  std::vector<char> zeta_needed_;    // individual timesteps: the owned atoms whose zeta is used
   std::vector<int> gather_counts_, gather_displs_;
   int offset_, ntotal_;
   void gather_all();
