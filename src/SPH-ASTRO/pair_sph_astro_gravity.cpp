@@ -397,6 +397,19 @@ void PairSPHAstroGravity::gather_all()
   }
   MPI_Allgatherv(mine.data(), 5 * nlocal, MPI_DOUBLE, all_.data(), counts5.data(), displs5.data(),
                  MPI_DOUBLE, world);
+  // the same, one array per quantity (contiguous for the vector lanes of eval)
+  gx_.resize(ntotal);
+  gy_.resize(ntotal);
+  gz_.resize(ntotal);
+  gm_.resize(ntotal);
+  gh_.resize(ntotal);
+  for (int j = 0; j < ntotal; j++) {
+    gx_[j] = all_[5 * j + 0];
+    gy_[j] = all_[5 * j + 1];
+    gz_[j] = all_[5 * j + 2];
+    gm_[j] = all_[5 * j + 3];
+    gh_[j] = all_[5 * j + 4];
+  }
   gather_counts_ = counts;
   gather_displs_ = displs;
   const char *active = sph_ ? sph_->active_flags() : nullptr;
@@ -566,6 +579,30 @@ void PairSPHAstroGravity::compute_zeta()
   }
 }
 
+namespace {
+// direct summation, atom i (xi, yi, zi, softening hi, G m_i) with the partners k < n: the
+// force fpair = -G m_i m_k (1/r^2)/r and energy e = 0 - 1/r of pair_term() beyond the softening
+// support (the same roundings), computed in vector lanes; kind[k] = 0 beyond the cutoff, 1
+// beyond the support, 2 within it (then pair_term() decides)
+template <bool ENERGY>
+void beyond_support(int n, double xi, double yi, double zi, double hi, double Gmi, double R,
+                    double cutsq, const double *__restrict gx, const double *__restrict gy,
+                    const double *__restrict gz, const double *__restrict gm,
+                    const double *__restrict gh, double *__restrict force,
+                    double *__restrict energy, char *__restrict kind)
+{
+  for (int k = 0; k < n; k++) {
+    const double delx = xi - gx[k], dely = yi - gy[k], delz = zi - gz[k];
+    const double rsq = delx * delx + dely * dely + delz * delz;
+    const double r = std::sqrt(rsq);
+    const double hmax = hi > gh[k] ? hi : gh[k];
+    kind[k] = static_cast<char>((rsq < cutsq) * (1 + (r < R * hmax)));
+    force[k] = -(Gmi * gm[k]) * ((1.0 / rsq) / r);
+    if (ENERGY) energy[k] = 0.0 - 1.0 / r;
+  }
+}
+}    // namespace
+
 /* ----------------------------------------------------------------------
    forces and energy; one pair term for both drivers (gathered atoms or neighbour list)
 ------------------------------------------------------------------------- */
@@ -666,22 +703,19 @@ template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int e
         if (active_all[first + j]) active_mine_.push_back(j);
     }
     const double RR = R * R;
+    row_force_.resize(n);
+    row_energy_.resize(n);
+    row_kind_.resize(n);
     for (int i = 0; i < nlocal; i++) {
       const int gi = first + i;
       const double *ai = all + 5 * gi;
       const double xi = ai[0], yi = ai[1], zi = ai[2], mi = ai[3], hi = ai[4];
       const double zoi = ZETA ? zo_all[gi] : 0.0;
       double fxi = 0.0, fyi = 0.0, fzi = 0.0;
-      auto pair = [&](int gj) __attribute__((always_inline))
+      // the force (and energy) of pair (i, gj): fpair = -G m_i m_j D, e per G m_i m_j
+      auto accumulate = [&](int gj, double delx, double dely, double delz, double mm, double fpair,
+                            double e) __attribute__((always_inline))
       {
-        const double *aj = all + 5 * gj;
-        const double delx = xi - aj[0], dely = yi - aj[1], delz = zi - aj[2];
-        const double rsq = delx * delx + dely * dely + delz * delz;
-        if (rsq >= cutsq) return;
-        double e, D;
-        pair_term(rsq, hi, aj[4], zoi, ZETA ? zo_all[gj] : 0.0, e, D);
-        const double mm = G * mi * aj[3];
-        const double fpair = -mm * D;
         fxi += delx * fpair;
         fyi += dely * fpair;
         fzi += delz * fpair;
@@ -700,6 +734,77 @@ template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int e
             ev_tally(i, gj - first, nlocal, 1, eflag ? mm * e : 0.0, 0.0, fpair, delx, dely, delz);
         } else if (evflag)
           ev_tally(i, nlocal, nlocal, 0, eflag ? mm * e : 0.0, 0.0, fpair, delx, dely, delz);
+      };
+      auto pair = [&](int gj) __attribute__((always_inline))
+      {
+        const double *aj = all + 5 * gj;
+        const double delx = xi - aj[0], dely = yi - aj[1], delz = zi - aj[2];
+        const double rsq = delx * delx + dely * dely + delz * delz;
+        if (rsq >= cutsq) return;
+        double e, D;
+        pair_term(rsq, hi, aj[4], zoi, ZETA ? zo_all[gj] : 0.0, e, D);
+        const double mm = G * mi * aj[3];
+        accumulate(gj, delx, dely, delz, mm, -mm * D, e);
+      };
+      // the pairs (i, gj) of gj in [a, b) (mine: this rank's atoms): first, for all of them at once (in vector lanes),
+      // the force and energy of pair_term() beyond the softening support, D = (1/r^2)/r and
+      // e = -1/r with the same roundings; then, in the order of gj, the pairs within the
+      // support by pair_term() and the sums
+      const bool with_e = evflag || (active_all && eflag_global);
+      auto pairs = [&](int a, int b, bool mine) {
+        const int len = b - a;
+        if (len <= 0) return;
+        const double *gx = gx_.data() + a, *gy = gy_.data() + a, *gz = gz_.data() + a;
+        const double *gm = gm_.data() + a, *gh = gh_.data() + a;
+        double *fbuf = row_force_.data(), *ebuf = row_energy_.data();
+        char *kind = row_kind_.data();
+        const double Gmi = G * mi;
+        if (with_e)
+          beyond_support<true>(len, xi, yi, zi, hi, Gmi, R, cutsq, gx, gy, gz, gm, gh, fbuf, ebuf,
+                               kind);
+        else
+          beyond_support<false>(len, xi, yi, zi, hi, Gmi, R, cutsq, gx, gy, gz, gm, gh, fbuf, ebuf,
+                                kind);
+        if (evflag && !active_all) {    // ev_tally()
+          for (int k = 0; k < len; k++) {
+            if (kind[k] == 0) continue;
+            if (kind[k] == 2) {
+              pair(a + k);
+              continue;
+            }
+            const double delx = xi - gx[k], dely = yi - gy[k], delz = zi - gz[k];
+            accumulate(a + k, delx, dely, delz, Gmi * gm[k], fbuf[k], ebuf[k]);
+          }
+          return;
+        }
+        // accumulate()'s sums in registers (the same operations in the same order)
+        const bool tally = active_all && eflag_global;
+        double fx = fxi, fy = fyi, fz = fzi, eng = eng_vdwl;
+        double *fj = f[0] + 3 * (a - first);    // (f is one block of 3 per atom)
+        for (int k = 0; k < len; k++, fj += 3) {
+          if (kind[k] == 0) continue;
+          if (kind[k] == 2) {
+            fxi = fx, fyi = fy, fzi = fz, eng_vdwl = eng;
+            pair(a + k);
+            fx = fxi, fy = fyi, fz = fzi, eng = eng_vdwl;
+            continue;
+          }
+          const double delx = xi - gx[k], dely = yi - gy[k], delz = zi - gz[k];
+          const double fpair = fbuf[k];
+          fx += delx * fpair;
+          fy += dely * fpair;
+          fz += delz * fpair;
+          if (mine) {
+            fj[0] -= delx * fpair;
+            fj[1] -= dely * fpair;
+            fj[2] -= delz * fpair;
+          }
+          if (tally) {
+            const double mm = Gmi * gm[k], e = ebuf[k];
+            eng += mine ? mm * e : 0.5 * mm * e;
+          }
+        }
+        fxi = fx, fyi = fy, fzi = fz, eng_vdwl = eng;
       };
       // the potential of a pair without its force (per G m_i m_j): softened within the
       // support, -1/r beyond it
@@ -729,8 +834,9 @@ template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int e
           eng_vdwl += whole + 0.5 * half;
         }
       } else {
-        for (int gj = 0; gj < first; gj++) pair(gj);
-        for (int gj = gi + 1; gj < n; gj++) pair(gj);    // in-rank pairs once
+        pairs(0, first, false);
+        pairs(gi + 1, last, true);    // in-rank pairs once
+        pairs(last, n, false);
       }
       f[i][0] += fxi;
       f[i][1] += fyi;

@@ -99,6 +99,10 @@ class PairSPHAstroGravity : public Pair {
   // direct summation: x, y, z, m, h of all atoms of all ranks (gather_all), zeta/Omega of all
   // atoms; this rank's atoms start at offset_
   std::vector<double> all_, zo_all_;
+  std::vector<double> gx_, gy_, gz_, gm_, gh_;    // all_ by quantity
+  // eval: one row's pairs beyond the softening support (force, energy) and each pair's kind
+  std::vector<double> row_force_, row_energy_;
+  std::vector<char> row_kind_;
   // individual timesteps (pair sph/astro's active flags): the flags of all atoms (gathered)
   std::vector<char> active_all_;
   bool active_pairs_only_ = false;    // individual timesteps: see compute()
