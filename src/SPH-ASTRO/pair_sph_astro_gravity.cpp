@@ -950,10 +950,13 @@ void *PairSPHAstroGravity::extract_peratom(const char *name, int &ncol)
 double PairSPHAstroGravity::memory_usage()
 {
   // (the gathered atoms of direct summation: capacity, as they are kept between steps)
-  const double gathered =
-      (all_.capacity() + zo_all_.capacity() + zeta_radii_.capacity()) * sizeof(double) +
+  const double gathered = (all_.capacity() + zo_all_.capacity() + zeta_radii_.capacity() +
+                           gx_.capacity() + gy_.capacity() + gz_.capacity() + gm_.capacity() +
+                           gh_.capacity() + row_force_.capacity() + row_energy_.capacity()) *
+          sizeof(double) +
       zeta_points_.capacity() * sizeof(double *) +
-      (zeta_index_.capacity() + zeta_found_.capacity()) * sizeof(int) + active_all_.capacity();
+      (zeta_index_.capacity() + zeta_found_.capacity() + active_mine_.capacity()) * sizeof(int) +
+      active_all_.capacity() + row_kind_.capacity() + zeta_needed_.capacity();
   return 2.0 * nmax_ * sizeof(double) + gathered + zeta_tree_->memory_usage() +
       Pair::memory_usage();
 }
