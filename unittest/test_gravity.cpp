@@ -21,8 +21,10 @@
 #include "force.h"
 #include "kspace.h"
 #include "pair.h"
+#include "update.h"
 #include "variable.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -323,41 +325,133 @@ TEST(GravityPair, AdaptiveSofteningConservesEnergyToSecondOrder)
   EXPECT_GT(n3, 0.5 * n2);    // without zeta the error does not converge away
 }
 
-// zeta_i = -h_i/(3 rho_i) sum_{j != i, r_ij < R h_i} m_j dphi(r_ij, h_i)/dh_i (Price & Monaghan
-// 2007, eq. 26) of the direct summation, whose neighbours a tree finds, against all pairs
-TEST(GravityPair, ZetaOfTheDirectSumIsTheSumOverAllPairs)
+// zeta_i = -h_i/(3 rho_i) S_i, S_i = sum_{j != i, r_ij < R h_i} m_j dphi(r_ij, h_i)/dh_i (Price &
+// Monaghan 2007, eq. 26) of the owned atoms (one rank) against all pairs; evaluated: the atoms
+// whose S_i is of this step (else each must hold S_i of its last evaluation, d_step_dphidh).
+// Returns how many atoms were checked against all pairs
+static int expect_zeta_is_pair_sum(const std::unique_ptr<LAMMPS> &lmp,
+                                   const std::vector<char> &evaluated = {})
 {
-  auto lmp = open_lammps();
-  falling_ball(lmp, "30", "dt fixed");
-  commands(lmp, {"timestep 0.01", "run 5"});
   int ncol = 0;
   const auto *zeta = static_cast<const double *>(
       lmp->force->pair_match("^sph/astro/gravity$", 0, 0)->extract_peratom("zeta", ncol));
-  ASSERT_NE(zeta, nullptr);
-  auto *sph = lmp->force->pair_match("^sph/astro$", 0, 0);
-  ASSERT_NE(sph, nullptr);
+  EXPECT_NE(zeta, nullptr);
+  if (!zeta) return 0;
+  auto *sph = static_cast<LAMMPS_NS::PairSPHAstro *>(lmp->force->pair_match("^sph/astro$", 0, 0));
   int flag, cols;
   const double *h = lmp->atom->dvector[lmp->atom->find_custom("h", flag, cols)];
   const double *rho = lmp->atom->dvector[lmp->atom->find_custom("rho", flag, cols)];
-  const auto cap = static_cast<LAMMPS_NS::PairSPHAstro *>(sph)->h_cap();
+  const int kept = lmp->atom->find_custom("step_dphidh", flag, cols);
+  const double cap = sph->h_cap();
   double **x = lmp->atom->x;
   const int n = lmp->atom->nlocal;
-  ASSERT_EQ(n, lmp->atom->natoms);    // one rank: every atom is owned
+  EXPECT_EQ(n, lmp->atom->natoms);    // one rank: every atom is owned
   const double R = SPHAstro::kernel_radius(SPHAstro::KernelType::CUBIC);
-  int inside = 0;
+  int inside = 0, checked = 0;
   for (int i = 0; i < n; i++) {
     double sum = 0.0;
-    for (int j = 0; j < n; j++) {
-      const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
-      const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
-      if (j == i || !(r < R * h[i])) continue;
-      sum += 0.25 * SPHAstro::softened_dphidh(SPHAstro::KernelType::CUBIC, r, h[i]);
-      inside++;
+    if (evaluated.empty() || evaluated[i]) {
+      for (int j = 0; j < n; j++) {
+        const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
+        const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
+        if (j == i || !(r < R * h[i])) continue;
+        sum += 0.25 * SPHAstro::softened_dphidh(SPHAstro::KernelType::CUBIC, r, h[i]);
+        inside++;
+      }
+      checked++;
+    } else {
+      EXPECT_GE(kept, 0);
+      if (kept < 0) return 0;
+      sum = lmp->atom->dvector[kept][i];
     }
     const double expected = h[i] >= cap ? 0.0 : -h[i] / (3.0 * rho[i]) * sum;
     EXPECT_NEAR(zeta[i], expected, 1e-13 * std::fabs(expected)) << "atom " << lmp->atom->tag[i];
   }
-  EXPECT_GT(inside, 20 * n);    // each atom has its kernel neighbours
+  EXPECT_GT(inside, 20 * checked);    // each atom has its kernel neighbours
+  return checked;
+}
+
+// pair sph/astro sums S_i in its h iteration for direct summation and for the short-range
+// part of a kspace split alike
+class GravityZeta : public ::testing::TestWithParam<const char *> {};
+
+TEST_P(GravityZeta, IsTheSumOverTheKernelNeighbours)
+{
+  const bool msm = std::string(GetParam()) == "msm";
+  auto lmp = open_lammps();
+  falling_ball(lmp, msm ? "1.5" : "30", "dt fixed");
+  if (msm) commands(lmp, {"kspace_style msm/sph/astro/gravity 1e-5"});
+  commands(lmp, {"timestep 0.01", "run 5"});
+  EXPECT_EQ(expect_zeta_is_pair_sum(lmp), lmp->atom->nlocal);
+}
+
+INSTANTIATE_TEST_SUITE_P(Summed, GravityZeta, ::testing::Values("direct", "msm"));
+
+// individual timesteps (a ball with a hot core), between synchronisation points: the atoms of
+// the step's evaluation have the zeta of their kernel neighbours now; the others that of
+// their S_i when they were last evaluated, with their h and rho of now
+TEST(GravityZetaIndividualSteps, InactiveAtomsKeepTheSumOfTheirLastEvaluation)
+{
+  auto lmp = open_lammps();
+  falling_ball(lmp, "30", "courant 0.3 steps individual tend 0.4");
+  commands(lmp, {"region core sphere 0 0 0 1.0 units box", "set region core d_u 3.0", "run 0"});
+  // steps until one evaluates fewer than half the atoms: those whose new step begins now (the
+  // latest begin of all)
+  const int n = lmp->atom->nlocal;
+  std::vector<char> evaluated(n);
+  int active = n;
+  for (int step = 0; step < 200 && !(active < n / 2); step++) {
+    commands(lmp, {"run 1 pre no post no"});
+    int flag, cols;
+    const double *begin = lmp->atom->dvector[lmp->atom->find_custom("step_begin", flag, cols)];
+    const double now = *std::max_element(begin, begin + n);
+    for (int i = 0; i < n; i++) evaluated[i] = begin[i] == now;
+    active = static_cast<int>(std::count(evaluated.begin(), evaluated.end(), 1));
+  }
+  std::printf("step %lld: %d of %d atoms evaluated\n",
+              static_cast<long long>(lmp->update->ntimestep), active, n);
+  ASSERT_GT(active, 0);
+  ASSERT_LT(active, n / 2);
+  EXPECT_EQ(expect_zeta_is_pair_sum(lmp, evaluated), active);
+}
+
+// individual timesteps with adaptive softening: a restart in the middle of the hierarchy
+// continues bit for bit (the sleeping atoms' sums of zeta travel in d_step_dphidh; a hot core
+// and limiter 3 make a deep hierarchy)
+TEST(GravityZetaIndividualSteps, RestartMidHierarchyContinuesBitForBit)
+{
+  const std::string restart = "test_gravity_individual.restart";
+  const std::string fix = "courant 0.3 steps individual tend 0.4 limiter 3";
+  std::map<int, double> x_ref, v_ref;
+  {
+    auto lmp = open_lammps();
+    falling_ball(lmp, "30", fix);
+    commands(lmp, {"region core sphere 0 0 0 1.0 units box", "set region core d_u 30.0"});
+    auto *gas = lmp->modify->get_fix_by_id("gas");
+    commands(lmp, {"run 1"});
+    EXPECT_LT(gas->compute_vector(4), 0.5 * lmp->atom->natoms);    // the restart: mid-hierarchy
+    commands(lmp, {"write_restart " + restart, "run 1"});
+    EXPECT_LT(gas->compute_vector(4), lmp->atom->natoms);    // the next step: some asleep
+    commands(lmp, {"run 40"});
+    EXPECT_GE(gas->compute_vector(5), 2.0);
+    x_ref = per_atom(lmp, "x", 0);
+    v_ref = per_atom(lmp, "v", 1);
+  }
+  auto lmp = open_lammps();
+  commands(lmp,
+           {"read_restart " + restart, "pair_coeff * * sph/astro",
+            "pair_coeff * * sph/astro/gravity", "fix gas all sph/astro " + fix,
+            "fix hvar all sph/astro/h iterate hfact 1.2 tol 1e-10 margin 2.5",
+            "neighbor " + num(0.3 * 1.2 * std::cbrt(0.25)) + " bin",
+            "neigh_modify every 1 delay 0 check yes", "run 1", "run 40"});
+  auto x = per_atom(lmp, "x", 0);
+  auto v = per_atom(lmp, "v", 1);
+  ASSERT_EQ(x.size(), x_ref.size());
+  for (const auto &[id, value] : x_ref) {
+    EXPECT_EQ(x[id], value) << "atom " << id;
+    EXPECT_EQ(v[id], v_ref[id]) << "atom " << id;
+  }
+  std::remove(restart.c_str());
 }
 
 // individual timesteps (a ball with a hot core): the gravity pair sums forces only for pairs

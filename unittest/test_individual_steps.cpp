@@ -455,7 +455,7 @@ TEST(IndividualSteps, ARestartWithoutTheStepStateIsRefused)
               "d_step_woken d_step_end_then d2_step_accel 3 d2_step_accel_other 3 "
               "d2_step_kick 3 d2_step_pair_lead 3 d_step_dudt d_step_divv d_step_omega "
               "d_step_balsara d_step_nneigh d_step_kick_u d_step_lead_u d_step_dudt_other "
-              "d_step_pending_next d2_step_pending 20 d2_step_recent 6",
+              "d_step_pending_next d_step_dphidh d2_step_pending 20 d2_step_recent 6",
               "fix gas all " + fix, "run 41", "write_restart " + restart});
   }
   auto lmp = open_lammps();

@@ -20,6 +20,7 @@
 
 #include "sph_astro_comm_table.h"
 #include "sph_astro_force_evaluation.h"
+#include "sph_astro_gravity_kernel.h"
 #include "sph_astro_neighbour_lists.h"
 #include "sph_astro_options.h"
 #include "sph_astro_pair_coeff.h"
@@ -263,7 +264,8 @@ void PairSPHAstro::grow_fields()
   fields_->grow(memory, atom->nmax,
                 {scheme_->curl, o.balsara, o.tracks_signal(), o.reconstruction(),
                  o.artificial_conductivity(), o.pressure_geometric || o.pressure_energy,
-                 o.pressure_energy, o.pressure_energy && gradh(), o.physical_conduction()});
+                 o.pressure_energy, o.pressure_energy && gradh(), o.physical_conduction(),
+                 dphidh_sums_ && gradh()});
 }
 
 PassContext PairSPHAstro::context()
@@ -312,6 +314,10 @@ GradhSettings PairSPHAstro::gradh_settings() const
                               : VelocitySums::NONE;
   s.pressure_energy = o.pressure_energy;
   s.gamma = o.eos.gamma;
+  if (dphidh_sums_ && fields_->dphidh_sum) {
+    s.dphidh_sum = fields_->dphidh_sum;
+    s.softened = &softened_kernel(o.kernel);
+  }
   return s;
 }
 
@@ -383,8 +389,12 @@ void PairSPHAstro::compute(int eflag, int vflag)
     if (!find_step_state(lmp, *step_index_))
       error->all(FLERR, "pair_style sph/astro: the individual-step state fix {} is missing",
                  STEPS_FIX_ID);
-    arrays.steps = {active_, atom->dvector[step_index_->omega], atom->dvector[step_index_->balsara],
-                    atom->dvector[step_index_->divv], atom->dvector[step_index_->nneigh]};
+    arrays.steps = {active_,
+                    atom->dvector[step_index_->omega],
+                    atom->dvector[step_index_->balsara],
+                    atom->dvector[step_index_->divv],
+                    atom->dvector[step_index_->nneigh],
+                    atom->dvector[step_index_->dphidh]};
     // the limiter, and kicks pair with the forces (and du/dt terms where u evolves)
     evaluated_pairs_.clear(record_forces_, opt_->eos.uses_energy() && !scheme_->entropy);
     if (record_pairs_) ctx.pairs = &evaluated_pairs_;
@@ -613,6 +623,9 @@ void *PairSPHAstro::extract_peratom(const char *name, int &ncol)
   }
   // non-null when omega holds grad-h factors (variable h by iteration)
   if (strcmp(name, "omega_valid") == 0) return (void *) omega();
+  // sum_softening_derivatives(): S_i of the owned atoms, of this step's evaluation
+  if (strcmp(name, "dphidh_sum") == 0)
+    return (void *) (dphidh_sums_ && gradh() ? f.dphidh_sum : nullptr);
   return nullptr;
 }
 

@@ -136,6 +136,11 @@ class PairSPHAstro : public Pair {
     record_pairs_ = record;
     record_forces_ = record && with_forces;
   }
+  // pair sph/astro/gravity's adaptive softening (its init_style asks): the h iteration also
+  // sums, for the owned atoms, S_i = sum_{j != i} m_j dphi(r_ij, h_i)/dh_i over the kernel
+  // neighbours (extract_peratom "dphidh_sum"; this style acts on every atom type, so these
+  // are all gravitating neighbours within R h_i)
+  void sum_softening_derivatives() { dphidh_sums_ = true; }
   // the active flags of owned and ghost atoms set for this step (null: global stepping)
   const char *active_flags() const { return active_; }
   // the pairs of the latest evaluation with individual steps, those inside the kernel
@@ -173,8 +178,9 @@ class PairSPHAstro : public Pair {
   double h_cap_start_;         // margin x the largest h at init (sets the ghost cutoff)
   double h_cap_;               // (ghost cutoff - skin) / kernel_radius_
   bool carried_cap_used_ = false;
-  int *sph_type_;           // per type: 1 if this pair style acts on it
-  double kernel_radius_;    // the support is kernel_radius_ h
+  int *sph_type_;               // per type: 1 if this pair style acts on it
+  bool dphidh_sums_ = false;    // sum_softening_derivatives()
+  double kernel_radius_;        // the support is kernel_radius_ h
   bigint h_failures_;
   bigint counts_step_;    // step whose force evaluation the neighbour counts belong to
   bigint computed_step_;

@@ -31,10 +31,10 @@
 // the term acts like a negative pressure. The sum leaves out j = i because E here has no
 // self-energy G m_i^2 phi(0, h_i)/2 (Price & Monaghan and Phantom include both; either choice
 // conserves energy). Particles whose h is held at the neighbour-list cap (Omega_i = 1 there)
-// get zeta_i = 0: their h does not follow rho. zeta_i needs sums over all neighbours of i, so
-// the partial sums of ghosts are reverse-communicated and the results forwarded. With a gravity kspace style the pair computes the
-// short-range remainder that the kspace does not supply (the Newtonian potential split as in
-// LAMMPS' coul/long and coul/msm):
+// get zeta_i = 0: their h does not follow rho. The sum of zeta_i runs over the kernel
+// neighbours of i, those of its density: pair sph/astro's h iteration sums it.
+// With a gravity kspace style the pair computes the short-range remainder that the kspace does
+// not supply (the Newtonian potential split as in LAMMPS' coul/long and coul/msm):
 //   PPPM (Ewald split, Hockney & Eastwood; LAMMPS pair coul/long):
 //     phi_short = phi_ij + erf(g r)/r             (-> -erfc(g r)/r beyond the softening)
 //   MSM (Hardy 2006; Hardy et al. 2009, Parallel Computing 35, 164, eq. 4; pair coul/msm):
@@ -48,7 +48,6 @@
 #include "pair_sph_astro.h"
 #include "sph_astro_gravity_kernel.h"
 #include "sph_astro_gravity_kspace.h"
-#include "sph_astro_neighbour_tree.h"
 #include "sph_astro_options.h"
 
 #include "sph_astro_pair_coeff.h"
@@ -91,7 +90,6 @@ PairSPHAstroGravity::PairSPHAstroGravity(LAMMPS *lmp) : Pair(lmp)
   sph_ = nullptr;
   zeta_ = nullptr;
   zeta_over_omega_ = nullptr;
-  zeta_tree_ = new SPHAstro::NeighbourTree();
   nmax_ = 0;
   comm_stage_ = Stage::H;
   offset_ = 0;
@@ -101,7 +99,6 @@ PairSPHAstroGravity::PairSPHAstroGravity(LAMMPS *lmp) : Pair(lmp)
   restartinfo = 1;
   one_coeff = 1;
   comm_forward = 2;    // softening length h of the ghosts, or zeta and zeta / Omega
-  comm_reverse = 1;    // partial sums of zeta
   // the long-range solvers check these flags; a non-gravity solver is refused in extract()
   ewaldflag = pppmflag = msmflag = 1;
   ncoultablebits = 0;    // no tabulation (the kspace accuracy estimates include table errors)
@@ -111,7 +108,6 @@ PairSPHAstroGravity::~PairSPHAstroGravity()
 {
   if (copymode) return;
   delete state_;
-  delete zeta_tree_;
   memory->destroy(zeta_);
   memory->destroy(zeta_over_omega_);
   if (allocated) {
@@ -239,6 +235,8 @@ void PairSPHAstroGravity::init_style()
                  kernel_name(kernel_), kernel_name(sph->options().kernel));
     kernel_ = sph->options().kernel;
   }
+  // the sums of zeta from pair sph/astro's h iteration
+  if (sph && zeta_on_) sph->sum_softening_derivatives();
   // the softened potential has closed forms for the polynomial kernels only
   if (kernel_ == KernelType::GAUSSIAN)
     error->all(FLERR,
@@ -542,10 +540,10 @@ template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int e
         const double mm = G * mi * aj[3];
         accumulate(gj, delx, dely, delz, mm, -mm * D, e);
       };
-      // the pairs (i, gj) of gj in [a, b) (mine: this rank's atoms): first, for all of them at once (in vector lanes),
-      // the force and energy of pair_term() beyond the softening support, D = (1/r^2)/r and
-      // e = -1/r with the same roundings; then, in the order of gj, the pairs within the
-      // support by pair_term() and the sums
+      // the pairs (i, gj) of gj in [a, b) (mine: this rank's atoms): first, for all of them at
+      // once (in vector lanes), the force and energy of pair_term() beyond the softening
+      // support, D = (1/r^2)/r and e = -1/r with the same roundings; then, in the order of gj,
+      // the pairs within the support by pair_term() and the sums
       const bool with_e = evflag || (active_all && eflag_global);
       auto pairs = [&](int a, int b, bool mine) {
         const int len = b - a;
@@ -723,18 +721,6 @@ void PairSPHAstroGravity::unpack_forward_comm(int n, int first, double *buf)
   for (int k = 0; k < n; k++) h[first + k] = buf[k];
 }
 
-// reverse communication: the ghosts' partial sums of zeta
-int PairSPHAstroGravity::pack_reverse_comm(int n, int first, double *buf)
-{
-  for (int k = 0; k < n; k++) buf[k] = zeta_[first + k];
-  return n;
-}
-
-void PairSPHAstroGravity::unpack_reverse_comm(int n, int *list, double *buf)
-{
-  for (int k = 0; k < n; k++) zeta_[list[k]] += buf[k];
-}
-
 // zeta: zeta_i of owned and ghost atoms, while the zeta terms are active (else null)
 void *PairSPHAstroGravity::extract_peratom(const char *name, int &ncol)
 {
@@ -746,15 +732,12 @@ void *PairSPHAstroGravity::extract_peratom(const char *name, int &ncol)
 double PairSPHAstroGravity::memory_usage()
 {
   // (the gathered atoms of direct summation: capacity, as they are kept between steps)
-  const double gathered = (all_.capacity() + zo_all_.capacity() + zeta_radii_.capacity() +
-                           gx_.capacity() + gy_.capacity() + gz_.capacity() + gm_.capacity() +
-                           gh_.capacity() + row_force_.capacity() + row_energy_.capacity()) *
+  const double gathered =
+      (all_.capacity() + zo_all_.capacity() + gx_.capacity() + gy_.capacity() + gz_.capacity() +
+       gm_.capacity() + gh_.capacity() + row_force_.capacity() + row_energy_.capacity()) *
           sizeof(double) +
-      zeta_points_.capacity() * sizeof(double *) +
-      (zeta_index_.capacity() + zeta_found_.capacity() + active_mine_.capacity()) * sizeof(int) +
-      active_all_.capacity() + row_kind_.capacity() + zeta_needed_.capacity();
-  return 2.0 * nmax_ * sizeof(double) + gathered + zeta_tree_->memory_usage() +
-      Pair::memory_usage();
+      active_mine_.capacity() * sizeof(int) + active_all_.capacity() + row_kind_.capacity();
+  return 2.0 * nmax_ * sizeof(double) + gathered + Pair::memory_usage();
 }
 
 /* ----------------------------------------------------------------------

@@ -23,7 +23,6 @@ PairStyle(sph/astro/gravity,PairSPHAstroGravity);
 #include <vector>
 
 namespace SPHAstro {
-class NeighbourTree;
 struct StateIndex;
 enum class KernelType;
 }    // namespace SPHAstro
@@ -46,8 +45,6 @@ class PairSPHAstroGravity : public Pair {
   void read_restart_settings(FILE *) override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
-  int pack_reverse_comm(int, int, double *) override;
-  void unpack_reverse_comm(int, int *, double *) override;
   void *extract(const char *, int &) override;
   void *extract_peratom(const char *, int &) override;
   double memory_usage() override;
@@ -107,12 +104,6 @@ class PairSPHAstroGravity : public Pair {
   std::vector<char> active_all_;
   bool active_pairs_only_ = false;    // individual timesteps: see compute()
   std::vector<int> active_mine_;      // this rank's active atoms (eval)
-  // zeta of the gathered atoms: a tree over their positions finds each one's kernel neighbours
-  SPHAstro::NeighbourTree *zeta_tree_;
-  std::vector<double *> zeta_points_;
-  std::vector<double> zeta_radii_;
-  std::vector<int> zeta_index_, zeta_found_;
-  std::vector<char> zeta_needed_;    // individual timesteps: the owned atoms whose zeta is used
   std::vector<int> gather_counts_, gather_displs_;
   int offset_, ntotal_;
   void gather_all();

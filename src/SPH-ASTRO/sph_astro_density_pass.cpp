@@ -17,13 +17,19 @@
 //              sums the velocity sums (curl or grad v) at the h it keeps, and with
 //              pressure-energy sum_j m_j u_j W(h_i) and the grad-h term
 //              C_i = h_i (dP_i/dh_i) / (d rho_i Omega_i) (0 where h does not follow rho).
+//              With adaptive gravitational softening (pair sph/astro/gravity) it also sums
+//              S_i = sum_{j != i} m_j dphi(r_ij, h_i)/dh_i, the sum of zeta_i (Price & Monaghan
+//              2007, MNRAS 374, 1347, eq. 26), over the same neighbours.
 
 #include "sph_astro_passes.h"
+
+#include "sph_astro_gravity_kernel.h"
 
 #include "error.h"
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 using namespace LAMMPS_NS;
 
@@ -80,6 +86,26 @@ namespace {
     }
     void end(int i, Own &own) const { nneigh[i] += own.n; }
   };
+
+  // S_i = sum_{j != i} m_j dphi(r_ij, h_i)/dh_i over the entries within the support
+  // support2 = (R h_i)^2, dphi/dh = -[fpot(q) + q fforce(q)] / h^2 (sph_astro_gravity_kernel.h)
+  template <class KERNEL>
+  double dphidh_sum(const NearEntries &near, const Particles &p, int i, double hinv,
+                    double support2, const SoftenedKernel &soft)
+  {
+    double sum = 0.0;
+    near.each(support2, [&](int j, double, double, double, double r2) {
+      if (j == i) return;
+      const double q = std::sqrt(r2) * hinv;
+      double fpot, fforce;
+      if constexpr (std::is_same_v<KERNEL, KernelCubic>)
+        SoftenedCubic::eval(q, fpot, fforce);
+      else
+        soft.eval(q, fpot, fforce);
+      sum -= p.mass_of(j) * (fpot + q * fforce);
+    });
+    return sum * hinv * hinv;
+  }
 
   // the entries kept for an h iteration: those within NEAR_MARGIN x the h it first tries (and
   // again for an h that goes past that)
@@ -235,6 +261,10 @@ namespace {
         f.energy_sum[i] = esum;
         f.pe_gradh[i] = follows_rho ? gm1 * hi * desum / (DIM * rhoi * f.omega[i]) : 0.0;
       }
+      // (near holds the entries within R h_near >= R h_i of the last evaluation)
+      if constexpr (DIM == 3)
+        if (s.dphidh_sum)
+          s.dphidh_sum[i] = dphidh_sum<KERNEL>(near, p, i, 1.0 / hi, R2 * hi * hi, *s.softened);
     }
     stats.particles = nl.inum;
   }

@@ -18,7 +18,7 @@ void Fields::grow(LAMMPS_NS::Memory *memory, int n, const Needs &needs)
       (!needs.pressure_factor || pressure_factor) && (!needs.energy_sum || energy_sum) &&
       (!needs.reconstruction || vgrad) && (!needs.conductivity || condrate) &&
       (!needs.pressure_energy || pe_gradh) && (!needs.conduction || conduct) &&
-      (!needs.balsara || balsara))
+      (!needs.balsara || balsara) && (!needs.dphidh_sum || dphidh_sum))
     return;
   if (n > nmax) nmax = n;
   auto make = [&](double *&a, bool wanted, const char *name) {
@@ -47,13 +47,14 @@ void Fields::grow(LAMMPS_NS::Memory *memory, int n, const Needs &needs)
   make(pressure_factor, needs.pressure_factor, "pair:sph/astro:pressure_factor");
   make(energy_sum, needs.energy_sum, "pair:sph/astro:energy_sum");
   make(conduct, needs.conduction, "pair:sph/astro:conduct");
+  make(dphidh_sum, needs.dphidh_sum, "pair:sph/astro:dphidh_sum");
 }
 
 void Fields::destroy(LAMMPS_NS::Memory *memory)
 {
   for (double **a :
        {&pressure, &soundspeed, &vdotgradw, &divv, &nneigh, &omega, &prho, &curlv, &balsara,
-        &vsigmax, &condrate, &pe_gradh, &pressure_factor, &energy_sum, &conduct})
+        &vsigmax, &condrate, &pe_gradh, &pressure_factor, &energy_sum, &conduct, &dphidh_sum})
     memory->destroy(*a);
   memory->destroy(dcurl);
   memory->destroy(vgsum);
@@ -64,8 +65,8 @@ void Fields::destroy(LAMMPS_NS::Memory *memory)
 double Fields::memory_usage() const
 {
   int arrays = 7;
-  for (const double *a :
-       {curlv, balsara, vsigmax, condrate, pe_gradh, pressure_factor, energy_sum, conduct})
+  for (const double *a : {curlv, balsara, vsigmax, condrate, pe_gradh, pressure_factor, energy_sum,
+                          conduct, dphidh_sum})
     if (a) arrays++;
   if (dcurl) arrays += 4;
   if (vgsum) arrays += VGRAD_SUMS + VGRAD_DATA;

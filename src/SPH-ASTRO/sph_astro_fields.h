@@ -19,7 +19,7 @@ struct Fields {
   // the arrays a scene needs
   struct Needs {
     bool curl, balsara, signal, reconstruction, conductivity, pressure_factor, pressure_energy,
-        energy_sum, conduction;
+        energy_sum, conduction, dphidh_sum;
   };
   // (re)allocate for n atoms when n grew or an array became needed
   void grow(LAMMPS_NS::Memory *memory, int n, const Needs &needs);
@@ -48,6 +48,8 @@ struct Fields {
   double *energy_sum = nullptr;    // pressure-energy with grad-h: sum_j m_j u_j W(h_i)
   double *prho = nullptr;          // the pressure term's P/(Omega rho^2), g or e/P (force pass)
   double *conduct = nullptr;       // physical heat conduction: du/dt of this step
+  // adaptive gravitational softening: sum_{j != i} m_j dphi(r_ij, h_i)/dh_i (GradhSettings)
+  double *dphidh_sum = nullptr;
 };
 
 }    // namespace SPHAstro

@@ -39,6 +39,10 @@ EvaluationResult ForceEvaluation::run(NeighbourLists &lists, const GradhSettings
     select_pairs(lists);
   }
   if (individual() && scheme_.gradh()) restore(f.omega, a_.steps.omega);
+  if (individual() && iteration.dphidh_sum) {
+    keep(iteration.dphidh_sum, a_.steps.dphidh);
+    restore(iteration.dphidh_sum, a_.steps.dphidh);
+  }
   equation_of_state(initialise_entropy);
   gradients();
   if (individual() && o_.balsara) restore(f.balsara, a_.steps.balsara);

@@ -53,8 +53,9 @@ class Exchange {
 struct ActiveSet {
   const char *active = nullptr;    // per owned and ghost atom; null: global stepping
   // the last evaluation's values of owned atoms (d_step_omega, d_step_balsara, d_step_divv,
-  // d_step_nneigh)
-  double *omega = nullptr, *balsara = nullptr, *divv = nullptr, *nneigh = nullptr;
+  // d_step_nneigh, d_step_dphidh)
+  double *omega = nullptr, *balsara = nullptr, *divv = nullptr, *nneigh = nullptr,
+         *dphidh = nullptr;
 };
 
 // per-atom state arrays the stages read or write besides those of the PassContext

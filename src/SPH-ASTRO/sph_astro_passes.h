@@ -35,6 +35,8 @@ class Pair;
 
 namespace SPHAstro {
 
+class SoftenedKernel;
+
 // what every pass sees
 struct PassContext {
   KernelType kernel;
@@ -87,6 +89,11 @@ struct GradhSettings {
   VelocitySums sums;
   bool pressure_energy;
   double gamma;
+  // pair sph/astro/gravity's adaptive softening (3D; sph_astro_gravity_kernel.h): at the h
+  // kept, S_i = sum_{j != i} m_j dphi(r_ij, h_i)/dh_i into dphidh_sum (null: not wanted), with
+  // the softened potential of the kernel
+  double *dphidh_sum = nullptr;
+  const SoftenedKernel *softened = nullptr;
 };
 struct GradhStatistics {
   double iterations_sum = 0.0;

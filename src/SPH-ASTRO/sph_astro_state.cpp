@@ -130,18 +130,18 @@ void ensure_continuity_state(LAMMPS *lmp, const char *caller)
 
 namespace {
   const char *const STEP_VECTORS[] = {
-      "step_begin",  "step_end",    "step_bin",        "step_woken",       "step_end_then",
-      "step_dudt",   "step_divv",   "step_omega",      "step_balsara",     "step_nneigh",
-      "step_kick_u", "step_lead_u", "step_dudt_other", "step_pending_next"};
+      "step_begin",  "step_end",    "step_bin",        "step_woken",        "step_end_then",
+      "step_dudt",   "step_divv",   "step_omega",      "step_balsara",      "step_nneigh",
+      "step_kick_u", "step_lead_u", "step_dudt_other", "step_pending_next", "step_dphidh"};
   constexpr int NSTEP_VECTORS = sizeof(STEP_VECTORS) / sizeof(STEP_VECTORS[0]);
 }    // namespace
 
 bool find_step_state(LAMMPS *lmp, StepIndex &idx)
 {
   int flag, cols;
-  int *fields[] = {&idx.begin,  &idx.end,    &idx.bin,        &idx.woken,       &idx.end_then,
-                   &idx.dudt,   &idx.divv,   &idx.omega,      &idx.balsara,     &idx.nneigh,
-                   &idx.kick_u, &idx.lead_u, &idx.dudt_other, &idx.pending_next};
+  int *fields[] = {&idx.begin,  &idx.end,    &idx.bin,        &idx.woken,        &idx.end_then,
+                   &idx.dudt,   &idx.divv,   &idx.omega,      &idx.balsara,      &idx.nneigh,
+                   &idx.kick_u, &idx.lead_u, &idx.dudt_other, &idx.pending_next, &idx.dphidh};
   static_assert(sizeof(fields) / sizeof(fields[0]) == NSTEP_VECTORS, "one index per vector");
   for (int k = 0; k < NSTEP_VECTORS; k++) {
     *fields[k] = lmp->atom->find_custom(STEP_VECTORS[k], flag, cols);
@@ -183,7 +183,8 @@ void ensure_step_state(LAMMPS *lmp, const char *caller)
                        "d_step_end_then d2_step_accel 3 "
                        "d2_step_accel_other 3 d2_step_kick 3 d2_step_pair_lead 3 d_step_dudt "
                        "d_step_divv d_step_omega d_step_balsara d_step_nneigh d_step_kick_u "
-                       "d_step_lead_u d_step_dudt_other d_step_pending_next d2_step_pending " +
+                       "d_step_lead_u d_step_dudt_other d_step_pending_next d_step_dphidh "
+                       "d2_step_pending " +
                        std::to_string(PENDING_SLOTS * PENDING_VALUES) + " d2_step_recent " +
                        std::to_string(RECENT_VALUES));
 }
@@ -215,7 +216,8 @@ void clear_state(LAMMPS *lmp, int i)
                            "step_kick_u",
                            "step_lead_u",
                            "step_dudt_other",
-                           "step_pending_next"}) {
+                           "step_pending_next",
+                           "step_dphidh"}) {
     const int index = atom->find_custom(name, flag, cols);
     if (index >= 0 && flag == 1 && cols == 0) atom->dvector[index][i] = 0.0;
   }

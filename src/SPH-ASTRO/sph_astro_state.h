@@ -98,6 +98,8 @@ bool find_continuity_state(LAMMPS_NS::LAMMPS *lmp, ContinuityIndex &idx);
 //   d_step_omega               grad-h factor Omega           (set by pair sph/astro)
 //   d_step_balsara             Balsara factor                (set by pair sph/astro)
 //   d_step_nneigh              neighbours inside the kernel support (set by pair sph/astro)
+//   d_step_dphidh              sum_j m_j dphi(r_ij, h_i)/dh_i (adaptive softening of pair
+//                              sph/astro/gravity; set by pair sph/astro)
 //   d_step_kick_u, d_step_lead_u, d_step_dudt_other
 //                              the same as d2_step_kick, d2_step_pair_lead, d2_step_accel_other
 //                              for u: kicks pair integrates pair sph/astro's du/dt terms pair
@@ -117,7 +119,8 @@ constexpr const char *STEPS_FIX_ID = "SPH_ASTRO_STEPS";
 struct StepIndex {
   int begin = -1, end = -1, bin = -1, woken = -1, end_then = -1, accel = -1, accel_other = -1,
       kick = -1, pair_lead = -1, dudt = -1, divv = -1, omega = -1, balsara = -1, nneigh = -1,
-      kick_u = -1, lead_u = -1, dudt_other = -1, pending = -1, recent = -1, pending_next = -1;
+      kick_u = -1, lead_u = -1, dudt_other = -1, pending = -1, recent = -1, pending_next = -1,
+      dphidh = -1;
 };
 void ensure_step_state(LAMMPS_NS::LAMMPS *lmp, const char *caller);
 
