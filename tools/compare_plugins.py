@@ -62,6 +62,12 @@ SCENES = {
     "evrard12i": ("examples/evrard/in.evrard", ["-var", "n", "12", "-var", "tend", "0.8",
                                                 "-var", "steps", "individual", "-var", "kicks",
                                                 "pair"]),
+    # the two with MSM's long range (the zeta sums and the short range from the neighbour list)
+    "evrard12m": ("examples/evrard/in.evrard", ["-var", "n", "12", "-var", "tend", "0.8",
+                                                "-var", "gravity", "msm"]),
+    "evrard12mi": ("examples/evrard/in.evrard", ["-var", "n", "12", "-var", "tend", "0.8",
+                                                 "-var", "gravity", "msm", "-var", "steps",
+                                                 "individual", "-var", "kicks", "pair"]),
 }
 
 _LOOP = re.compile(r"^Loop time of (\S+) on", re.M)
