@@ -327,7 +327,8 @@ TEST(GravityPair, AdaptiveSofteningConservesEnergyToSecondOrder)
 
 // zeta_i = -h_i/(3 rho_i) S_i, S_i = sum_{j != i, r_ij < R h_i} m_j dphi(r_ij, h_i)/dh_i (Price &
 // Monaghan 2007, eq. 26) of the owned atoms (one rank) against all pairs; evaluated: the atoms
-// whose S_i is of this step (else each must hold S_i of its last evaluation, d_step_dphidh).
+// whose S_i is of this step (else each must hold h_i^2 S_i of its last evaluation, d_step_dphidh,
+// over its h^2 of now).
 // Returns how many atoms were checked against all pairs
 static int expect_zeta_is_pair_sum(const std::unique_ptr<LAMMPS> &lmp,
                                    const std::vector<char> &evaluated = {})
@@ -362,7 +363,7 @@ static int expect_zeta_is_pair_sum(const std::unique_ptr<LAMMPS> &lmp,
     } else {
       EXPECT_GE(kept, 0);
       if (kept < 0) return 0;
-      sum = lmp->atom->dvector[kept][i];
+      sum = lmp->atom->dvector[kept][i] / (h[i] * h[i]);
     }
     const double expected = h[i] >= cap ? 0.0 : -h[i] / (3.0 * rho[i]) * sum;
     EXPECT_NEAR(zeta[i], expected, 1e-13 * std::fabs(expected)) << "atom " << lmp->atom->tag[i];
@@ -389,7 +390,7 @@ INSTANTIATE_TEST_SUITE_P(Summed, GravityZeta, ::testing::Values("direct", "msm")
 
 // individual timesteps (a ball with a hot core), between synchronisation points: the atoms of
 // the step's evaluation have the zeta of their kernel neighbours now; the others that of
-// their S_i when they were last evaluated, with their h and rho of now
+// h^2 S_i when they were last evaluated, with their h and rho of now
 TEST(GravityZetaIndividualSteps, InactiveAtomsKeepTheSumOfTheirLastEvaluation)
 {
   auto lmp = open_lammps();

@@ -39,10 +39,7 @@ EvaluationResult ForceEvaluation::run(NeighbourLists &lists, const GradhSettings
     select_pairs(lists);
   }
   if (individual() && scheme_.gradh()) restore(f.omega, a_.steps.omega);
-  if (individual() && iteration.dphidh_sum) {
-    keep(iteration.dphidh_sum, a_.steps.dphidh);
-    restore(iteration.dphidh_sum, a_.steps.dphidh);
-  }
+  if (individual() && iteration.dphidh_sum) keep_softening_sums(iteration.dphidh_sum);
   equation_of_state(initialise_entropy);
   gradients();
   if (individual() && o_.balsara) restore(f.balsara, a_.steps.balsara);
@@ -101,6 +98,23 @@ void ForceEvaluation::restore(double *field, const double *kept)
   const char *active = a_.steps.active;
   for (int i = 0; i < nlocal; i++)
     if (!active[i]) field[i] = kept[i];
+}
+
+// S_i = h_i^-2 sum_j m_j g(q_ij), g(q) = -[fpot(q) + q fforce(q)] (sph_astro_gravity_kernel.h):
+// kept as h_i^2 S_i, which a homologous drift (q_ij fixed, as rho and h drift) leaves as it is,
+// so that an inactive atom's S_i follows its drifted h
+void ForceEvaluation::keep_softening_sums(double *sums)
+{
+  const int nlocal = ctx_.p.nlocal;
+  const char *active = a_.steps.active;
+  const double *h = a_.h;
+  double *kept = a_.steps.dphidh;
+  for (int i = 0; i < nlocal; i++) {
+    if (active[i])
+      kept[i] = sums[i] * h[i] * h[i];
+    else
+      sums[i] = kept[i] / (h[i] * h[i]);
+  }
 }
 
 void ForceEvaluation::keep(const double *field, double *kept)

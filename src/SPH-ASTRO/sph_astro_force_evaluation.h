@@ -53,7 +53,7 @@ class Exchange {
 struct ActiveSet {
   const char *active = nullptr;    // per owned and ghost atom; null: global stepping
   // the last evaluation's values of owned atoms (d_step_omega, d_step_balsara, d_step_divv,
-  // d_step_nneigh, d_step_dphidh)
+  // d_step_nneigh; d_step_dphidh: h_i^2 times the sum of zeta_i)
   double *omega = nullptr, *balsara = nullptr, *divv = nullptr, *nneigh = nullptr,
          *dphidh = nullptr;
 };
@@ -108,6 +108,8 @@ class ForceEvaluation {
   // active ones keep this evaluation's (keep)
   void restore(double *field, const double *kept);
   void keep(const double *field, double *kept);
+  // adaptive softening: the active atoms' sums of zeta kept, the others' from what was kept
+  void keep_softening_sums(double *sums);
 
   void density(const GradhSettings &gradh, GradhStatistics &hstats, bool initialise,
                EvaluationResult &result);

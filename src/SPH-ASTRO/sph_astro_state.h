@@ -98,7 +98,7 @@ bool find_continuity_state(LAMMPS_NS::LAMMPS *lmp, ContinuityIndex &idx);
 //   d_step_omega               grad-h factor Omega           (set by pair sph/astro)
 //   d_step_balsara             Balsara factor                (set by pair sph/astro)
 //   d_step_nneigh              neighbours inside the kernel support (set by pair sph/astro)
-//   d_step_dphidh              sum_j m_j dphi(r_ij, h_i)/dh_i (adaptive softening of pair
+//   d_step_dphidh              h_i^2 sum_j m_j dphi(r_ij, h_i)/dh_i (adaptive softening of pair
 //                              sph/astro/gravity; set by pair sph/astro)
 //   d_step_kick_u, d_step_lead_u, d_step_dudt_other
 //                              the same as d2_step_kick, d2_step_pair_lead, d2_step_accel_other
