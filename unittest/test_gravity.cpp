@@ -256,6 +256,19 @@ TEST(GravityPair, HybridOverlayWithSPH)
 // a cold gas ball of radius 2.5 lattice units (SPH + gravity, variable h by iteration with grad-h
 // terms, lattice displaced at random) under fix sph/astro FIX; gravity: the pair sub-style's
 // arguments after its name
+// positions and velocities bit for bit those of a reference run (by atom ID)
+static void expect_same_x_v(const std::unique_ptr<LAMMPS> &lmp, const std::map<int, double> &x_ref,
+                            const std::map<int, double> &v_ref)
+{
+  auto x = per_atom(lmp, "x", 0);
+  auto v = per_atom(lmp, "v", 1);
+  ASSERT_EQ(x.size(), x_ref.size());
+  for (const auto &[id, value] : x_ref) {
+    EXPECT_EQ(x[id], value) << "atom " << id;
+    EXPECT_EQ(v[id], v_ref.at(id)) << "atom " << id;
+  }
+}
+
 static void falling_ball(const std::unique_ptr<LAMMPS> &lmp, const std::string &gravity,
                          const std::string &fix)
 {
@@ -445,13 +458,7 @@ TEST(GravityZetaIndividualSteps, RestartMidHierarchyContinuesBitForBit)
             "fix hvar all sph/astro/h iterate hfact 1.2 tol 1e-10 margin 2.5",
             "neighbor " + num(0.3 * 1.2 * std::cbrt(0.25)) + " bin",
             "neigh_modify every 1 delay 0 check yes", "run 1", "run 40"});
-  auto x = per_atom(lmp, "x", 0);
-  auto v = per_atom(lmp, "v", 1);
-  ASSERT_EQ(x.size(), x_ref.size());
-  for (const auto &[id, value] : x_ref) {
-    EXPECT_EQ(x[id], value) << "atom " << id;
-    EXPECT_EQ(v[id], v_ref[id]) << "atom " << id;
-  }
+  expect_same_x_v(lmp, x_ref, v_ref);
   std::remove(restart.c_str());
 }
 
@@ -561,13 +568,7 @@ TEST(GravityPair, RestartContinuesBitForBit)
       {"read_restart " + restart, "sph/astro/state", "kspace_style msm/sph/astro/gravity 1e-5"});
   commands(lmp, run_setup);
   commands(lmp, {"run 20"});
-  auto x = per_atom(lmp, "x", 0);
-  auto v = per_atom(lmp, "v", 1);
-  ASSERT_EQ(x.size(), x_ref.size());
-  for (const auto &[id, value] : x_ref) {
-    EXPECT_EQ(x[id], value) << "atom " << id;
-    EXPECT_EQ(v[id], v_ref[id]) << "atom " << id;
-  }
+  expect_same_x_v(lmp, x_ref, v_ref);
   std::remove(restart.c_str());
 }
 
