@@ -23,8 +23,6 @@
 #include "neigh_list.h"
 #include "update.h"
 
-#include <algorithm>
-#include <cmath>
 #include <vector>
 
 using namespace LAMMPS_NS;
@@ -96,9 +94,10 @@ void PairSPHAstroGravity::gather_all()
 
 // zeta_i = dh_i/drho_i S_i, S_i = sum_{j != i} m_j dphi(r_ij, h_i)/dh_i, dh/drho = -h/(3 rho);
 // S_i is summed by pair sph/astro's h iteration over the same kernel neighbours (with
-// individual timesteps an inactive atom keeps the S_i of its last evaluation, its h and rho
-// drifted since); stored as zeta_i (zeta_) and zeta_i/Omega_i of all atoms (gathered, direct
-// summation) or of owned + ghost atoms (zeta_over_omega_, kspace split)
+// individual timesteps an inactive atom's is that of its last evaluation carried with its
+// drifted h, ForceEvaluation::keep_softening_sums()); stored as zeta_i (zeta_; ghosts: 0 with
+// direct summation) and zeta_i/Omega_i of all atoms (gathered, direct summation) or of owned +
+// ghost atoms (zeta_over_omega_, kspace split)
 void PairSPHAstroGravity::compute_zeta()
 {
   if (atom->nmax > nmax_) {
@@ -128,6 +127,7 @@ void PairSPHAstroGravity::compute_zeta()
   }
   // zeta/Omega of the partners
   if (split_ == Split::NONE) {
+    for (int i = nlocal; i < nlocal + atom->nghost; i++) zeta_[i] = 0.0;
     std::vector<double> mine(nlocal);
     for (int i = 0; i < nlocal; i++) mine[i] = zeta_[i] / omega[i];
     zo_all_.resize(ntotal_);
