@@ -18,9 +18,7 @@
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
-#include "force.h"
 #include "memory.h"
-#include "neigh_list.h"
 #include "update.h"
 
 #include <vector>
