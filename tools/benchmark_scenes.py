@@ -18,8 +18,8 @@ n 16, MSM gravity, to t = 0.8), the same scenes with individual timesteps (``sed
 ``sedov22i``, ``sedov35i``, ``noh24i``, ``evrardi``: ``-var steps individual`` with the inputs'
 default pair kicks; their updates are the particle-updates fix sph/astro counts); the same with
 particle kicks, ``-var kicks particle``: ``sedov16ik``, ``sedov22ik``, ``sedov35ik``,
-``noh24ik``, ``evrardik``; ``sedov16i2``,
-``sedov22i2``, ``sedov35i2`` with ``-var limiter 2``; ``sedov16p``, ``sedov22p``,
+``noh24ik``, ``evrardik``; ``sedov16i1``,
+``sedov22i1``, ``sedov35i1`` with ``-var limiter 1`` (the Sedov input's default is 2); ``sedov16p``, ``sedov22p``,
 ``sedov35p`` and, with individual steps, ``sedov16ip``, ``sedov22ip``, ``sedov35ip``: the
 Courant signal speed over the neighbours,
 ``-var vsig pairs``; ``sedov16c``, ``sedov22c``, ``sedov35c`` and, with individual steps,
@@ -86,10 +86,11 @@ for _name in ("sedov16", "sedov22", "sedov35", "noh24", "evrard"):
     _script, _vars = SCENES[_name]
     SCENES[_name + "i"] = (_script, dict(_vars, steps="individual"))
     SCENES[_name + "ik"] = (_script, dict(_vars, steps="individual", kicks="particle"))
-# Sedov with individual steps and a limiter of 2 levels (factor 4, SWIFT's): row name + "i2"
+# Sedov with individual steps and a limiter of 1 level (factor 2; the default is 2 levels,
+# factor 4, SWIFT's): row name + "i1"
 for _name in ("sedov16", "sedov22", "sedov35"):
     _script, _vars = SCENES[_name]
-    SCENES[_name + "i2"] = (_script, dict(_vars, steps="individual", limiter=2))
+    SCENES[_name + "i1"] = (_script, dict(_vars, steps="individual", limiter=1))
 # Sedov with the Courant signal speed taken over the neighbours (vsig pairs): global steps
 # row name + "p", individual steps + "ip"; with SWIFT's Courant criterion (vsig pairs courant
 # 0.4: dt = 0.4 h / max_j v_sig,ij, which is SWIFT's CFL 0.1 with its h = H / 1.825742 for the
@@ -110,7 +111,7 @@ for _name in ("sedov16", "sedov22", "sedov35"):
 SWIFT_ROWS = {"swift35": 35, "swift56": 56}
 ORDER = ["box1e4", "box1e5", "box1e6", "box1e5i"] + [
     s + v for s in ("sedov16", "sedov22", "sedov35")
-    for v in ("", "p", "i", "ik", "ip", "i2", "c", "ic", "s", "is")] + [
+    for v in ("", "p", "i", "ik", "ip", "i1", "c", "ic", "s", "is")] + [
     "noh24", "noh24i", "noh24ik", "evrard", "evrardi", "evrardik", "swift35", "swift56"]
 
 _LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", re.M)

@@ -148,7 +148,7 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
         if (limiter_levels_ < 1 || limiter_levels_ > 10)
           error->all(FLERR,
                      "fix sph/astro: limiter {} must be off or a number of bins from 1 to 10 (a "
-                     "particle's step at most 2^N times its neighbours'; 1 by default)",
+                     "particle's step at most 2^N times its neighbours'; 2 by default)",
                      val);
       }
     } else if (key == "kicks") {
