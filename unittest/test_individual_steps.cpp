@@ -348,6 +348,32 @@ TEST(IndividualSteps, WithoutTheLimiterABlastIntoSleepingGasGoesWrong)
   EXPECT_LT(error[1], 2e-2);
 }
 
+// without a limiter keyword the limiter is 2 levels (factor 4) with pair kicks and 1 (factor 2)
+// with particle kicks: the run is that of the explicit value bit for bit, and not that of the
+// other value
+TEST(IndividualSteps, TheDefaultLimiterDependsOnTheKicks)
+{
+  for (const std::string kicks : {"pair", "particle"}) {
+    std::map<std::string, std::map<int, double>> x;
+    for (const std::string limiter : {"", " limiter 1", " limiter 2"}) {
+      auto lmp = open_lammps();
+      hot_spot(lmp, 4, "sph/astro courant 0.3 steps individual tend 0.02 kicks " + kicks + limiter,
+               2000.0);
+      commands(lmp, {"run 100000"});
+      EXPECT_GT(fix_value(lmp, "gas", 7), 0.0) << kicks << limiter;    // the limiter woke some
+      x[limiter] = per_atom(lmp, "x", 0);
+    }
+    const std::string same = kicks == "pair" ? " limiter 2" : " limiter 1";
+    const std::string other = kicks == "pair" ? " limiter 1" : " limiter 2";
+    int differ = 0;
+    for (const auto &[id, value] : x[""]) {
+      EXPECT_EQ(value, x[same][id]) << kicks << " atom " << id;
+      if (value != x[other][id]) differ++;
+    }
+    EXPECT_GT(differ, 0) << kicks;
+  }
+}
+
 // a restart mid-hierarchy, and a run split in two, continue bit for bit (split in three with
 // runs of pre no: to round-off)
 // (kicks: particle or pair; kicks pair keeps the pair kicks it opened in d2_step_kick)

@@ -136,7 +136,9 @@ class FixSPHAstro : public Fix {
   SPHAstro::IndividualSteps *steps_ = nullptr;
   SPHAstro::SyncEnergy *sync_energy_ = nullptr;    // individual steps: E at synchronisation
   bool pair_kicks_ = true;    // individual steps: pair forces and du/dt integrated pair by pair
-  int limiter_levels_ = 2;    // the limiter: no step more than 2^levels x a neighbour's (0: off)
+  // the limiter: no step more than 2^levels x a neighbour's (0: off; -1: not given, then 2 with
+  // pair kicks and 1 with particle kicks)
+  int limiter_levels_ = -1;
   std::vector<double> wanted_;
   // the timestep criteria of atom i: Courant, force, energy, conduction (infinite where one
   // does not limit it)

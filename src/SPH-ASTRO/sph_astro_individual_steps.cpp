@@ -640,11 +640,15 @@ void IndividualSteps::log_summary() const
   std::string bins;
   for (int b = 0; b <= TimeBins::MAX_BIN; b++)
     if (histogram[b] > 0.0) bins += fmt::format(" {}:{:.0f}", b, histogram[b]);
+  const std::string limiter = levels_ > 0
+      ? fmt::format("{} level{}, factor {}", levels_, levels_ > 1 ? "s" : "", 1 << levels_)
+      : "off";
   utils::logmesg(lmp,
                  "fix sph/astro steps individual: {:.0f} particle-updates in {:.0f} steps ({:.1f} "
-                 "per particle), {:.0f} woken by the limiter; dt_max {:.6g}, {} occupied bins "
-                 "(bin:particles, dt = dt_max/2^bin):{}\n",
-                 updates_, steps_, n > 0 ? updates_ / n : 0.0, woken, dt_max_, occupied, bins);
+                 "per particle), {:.0f} woken by the limiter ({}); dt_max {:.6g}, {} occupied "
+                 "bins (bin:particles, dt = dt_max/2^bin):{}\n",
+                 updates_, steps_, n > 0 ? updates_ / n : 0.0, woken, limiter, dt_max_, occupied,
+                 bins);
 }
 
 std::string IndividualSteps::shortest_step() const
