@@ -292,11 +292,13 @@ SCENES: Dict[str, Scene] = {
             # doc/validation.md's table, not this run: compare its times with that table's),
             # its L1(rho) by tools/swift_sedov_errors.py on its t = 0.1 snapshot
             resolutions=(12, 16, 22), np=2, var=(),
-            variants="steps=global;steps=individual;steps=individual,kicks=particle",
+            variants="steps=global;steps=individual;steps=individual,limiter=1;"
+                     "steps=individual,kicks=particle",
             reference_label="SWIFT (2 threads)",
             reference=((42875, 8.9, 0.448), (175616, 47.1, 0.398)),
-            notes="Sedov with global and individual timesteps (pair kicks, the default, and "
-                  "particle kicks), 2 MPI ranks")}),
+            notes="Sedov with global and individual timesteps (the defaults: pair kicks, a "
+                  "limiter of 2 levels; a limiter of 1 level; particle kicks, whose default "
+                  "limiter is 1 level), 2 MPI ranks")}),
     "toystar": Scene(
         input="examples/toystar/in.toystar", res_var="n", out_var="out",
         default_res=(8, 12, 16), analyse=analyse_toystar,
