@@ -18,8 +18,8 @@ n 16, MSM gravity, to t = 0.8), the same scenes with individual timesteps (``sed
 ``sedov22i``, ``sedov35i``, ``noh24i``, ``evrardi``: ``-var steps individual`` with the inputs'
 default pair kicks; their updates are the particle-updates fix sph/astro counts); the same with
 particle kicks, ``-var kicks particle``: ``sedov16ik``, ``sedov22ik``, ``sedov35ik``,
-``noh24ik``, ``evrardik``; ``sedov16i1``,
-``sedov22i1``, ``sedov35i1`` with ``-var limiter 1`` (the Sedov input's default is 2); ``sedov16p``, ``sedov22p``,
+``noh24ik``, ``evrardik``; ``sedov16i1``, ``sedov22i1``, ``sedov35i1`` with ``-var limiter 1``
+(the default is 2 levels with pair kicks); ``sedov16p``, ``sedov22p``,
 ``sedov35p`` and, with individual steps, ``sedov16ip``, ``sedov22ip``, ``sedov35ip``: the
 Courant signal speed over the neighbours,
 ``-var vsig pairs``; ``sedov16c``, ``sedov22c``, ``sedov35c`` and, with individual steps,
