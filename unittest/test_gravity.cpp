@@ -25,8 +25,10 @@
 #include "variable.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <map>
 
 using namespace sph_astro_test;
 using LAMMPS_NS::LAMMPS;
@@ -270,14 +272,14 @@ static void expect_same_x_v(const std::unique_ptr<LAMMPS> &lmp, const std::map<i
 }
 
 static void falling_ball(const std::unique_ptr<LAMMPS> &lmp, const std::string &gravity,
-                         const std::string &fix)
+                         const std::string &fix, const std::string &boundary = "s s s")
 {
   const double h = 1.2 * std::cbrt(0.25);
   commands(lmp,
            {"units lj",
             "atom_style atomic",
             "atom_modify map array sort 0 0.0",
-            "boundary s s s",
+            "boundary " + boundary,
             "lattice fcc 4.0",
             "region box block -4 4 -4 4 -4 4",
             "create_box 1 box",
@@ -545,6 +547,153 @@ TEST(GravityPair, IndividualStepsMeasureTheEnergyWhereverEveryParticleEndsItsSte
   }
   std::printf("%d synchronisation points in %d steps\n", points, steps);
   EXPECT_GT(points, 10);
+}
+
+// fix sph/astro longrange sync (a ball with a hot core, MSM): the long range is computed only
+// at the steps where every particle ends its step, and integrated on the intervals between them
+namespace {
+// each atom's long-range acceleration d2_step_accel_long, by atom ID
+std::map<int, std::array<double, 3>> accel_long(const std::unique_ptr<LAMMPS> &lmp)
+{
+  int flag, cols;
+  const int index = lmp->atom->find_custom("step_accel_long", flag, cols);
+  std::map<int, std::array<double, 3>> out;
+  if (index < 0) return out;
+  double **a = lmp->atom->darray[index];
+  for (int i = 0; i < lmp->atom->nlocal; i++)
+    out[static_cast<int>(lmp->atom->tag[i])] = {a[i][0], a[i][1], a[i][2]};
+  return out;
+}
+
+// solver msm (open box) or pppm (periodic box of 8)
+void hot_ball(const std::unique_ptr<LAMMPS> &lmp, const std::string &fix,
+              const std::string &solver = "msm")
+{
+  const bool msm = solver == "msm";
+  falling_ball(lmp, msm ? "1.5" : "3.0", fix, msm ? "s s s" : "p p p");
+  commands(lmp,
+           {"kspace_style " + solver + "/sph/astro/gravity 1e-5",
+            "region core sphere 0 0 0 1.0 units box", "set region core d_u 3.0"});
+}
+}    // namespace
+
+// the solver's forces and energy change at the synchronisation points only, and there are
+// fewer of them than steps
+TEST(GravityLongRangeSync, ComputedOnlyWhereEveryParticleEndsItsStep)
+{
+  auto lmp = open_lammps();
+  hot_ball(lmp, "courant 0.3 steps individual tend 0.4 longrange sync");
+  commands(lmp, {"thermo_style custom step pe c_sum[12] f_gas[9]", "run 1"});
+  const double n = static_cast<double>(lmp->atom->natoms);
+  auto *gas = lmp->modify->get_fix_by_id("gas");
+  auto before = accel_long(lmp);
+  ASSERT_FALSE(before.empty());
+  double energy = lmp->force->kspace->energy;
+  int points = 0, between = 0;
+  for (int step = 0; step < 400 && !(points >= 4 && between >= 20); step++) {
+    commands(lmp, {"run 1 pre no post no"});
+    const auto now = accel_long(lmp);
+    const bool all_active = gas->compute_vector(4) == n;
+    int changed = 0;
+    for (const auto &[id, a] : now) changed += a != before.at(id);
+    if (all_active) {
+      EXPECT_GT(changed, 0) << "step " << lmp->update->ntimestep;
+      points++;
+    } else {
+      EXPECT_EQ(changed, 0) << "step " << lmp->update->ntimestep;
+      EXPECT_EQ(lmp->force->kspace->energy, energy) << "step " << lmp->update->ntimestep;
+      between++;
+    }
+    before = now;
+    energy = lmp->force->kspace->energy;
+  }
+  std::printf("%d synchronisation points, %d steps between\n", points, between);
+  EXPECT_GE(points, 4);
+  EXPECT_GE(between, 20);
+}
+
+// with every particle on one bin (dtmax below every particle's own step) each step is a
+// synchronisation point, and the long-range kicks over the interval are those of every step:
+// the same run as longrange every to round-off (this includes the long-range term in the
+// predicted velocities)
+class GravityLongRangeSyncSolver : public ::testing::TestWithParam<const char *> {};
+
+TEST_P(GravityLongRangeSyncSolver, OneBinIsTheRunOfEveryStep)
+{
+  std::map<int, double> x[2], v[2];
+  for (int k : {0, 1}) {
+    auto lmp = open_lammps();
+    hot_ball(lmp,
+             std::string("courant 0.3 steps individual tend 0.1 dtmax 0.002 longrange ") +
+                 (k ? "sync" : "every"),
+             GetParam());
+    commands(lmp, {"thermo_style custom step c_sum[12] f_gas[6]", "run 100000"});
+    EXPECT_EQ(lmp->modify->get_fix_by_id("gas")->compute_vector(5), 1.0);    // one bin
+    EXPECT_GE(lmp->update->ntimestep, 50);
+    x[k] = per_atom(lmp, "x", 0);
+    v[k] = per_atom(lmp, "v", 1);
+  }
+  double dx = 0.0, dv = 0.0, vmax = 0.0;
+  for (const auto &[id, value] : x[0]) {
+    dx = std::max(dx, std::fabs(x[1][id] - value));
+    dv = std::max(dv, std::fabs(v[1][id] - v[0][id]));
+    vmax = std::max(vmax, std::fabs(v[0][id]));
+  }
+  std::printf("largest differences: x %.3e, v %.3e (largest |v| %.3e)\n", dx, dv, vmax);
+  EXPECT_LT(dx, 1e-12);
+  EXPECT_LT(dv, 1e-10 * vmax);
+  EXPECT_GT(vmax, 1e-2);
+}
+
+INSTANTIATE_TEST_SUITE_P(GravityLongRangeSync, GravityLongRangeSyncSolver,
+                         ::testing::Values("msm", "pppm"));
+
+// a restart between two synchronisation points continues bit for bit: the long-range
+// accelerations come back with the restart file, the interval from the particles' steps.
+// PPPM: MSM in a shrink-wrapped box fits its cutoff to the box at each run's start, which a
+// restart file holds as it was when written (5e-9 apart after 30 steps, with every step too)
+TEST(GravityLongRangeSync, RestartBetweenSynchronisationPointsContinuesBitForBit)
+{
+  const std::string restart = "test_gravity_long_range.restart";
+  const std::string fix = "courant 0.3 steps individual tend 0.4 longrange sync";
+  std::map<int, double> x_ref, v_ref;
+  LAMMPS_NS::bigint steps = 0;
+  {
+    auto lmp = open_lammps();
+    hot_ball(lmp, fix, "pppm");
+    auto *gas = lmp->modify->get_fix_by_id("gas");
+    commands(lmp, {"run 1"});
+    for (int step = 0; step < 50 && gas->compute_vector(4) == lmp->atom->natoms; step++)
+      commands(lmp, {"run 1"});
+    ASSERT_LT(gas->compute_vector(4), lmp->atom->natoms);    // the restart: between two points
+    commands(lmp, {"write_restart " + restart, "run 60"});
+    EXPECT_GE(gas->compute_vector(5), 2.0);
+    steps = lmp->update->ntimestep;
+    x_ref = per_atom(lmp, "x", 0);
+    v_ref = per_atom(lmp, "v", 1);
+  }
+  auto lmp = open_lammps();
+  commands(lmp,
+           {"read_restart " + restart, "pair_coeff * * sph/astro",
+            "pair_coeff * * sph/astro/gravity", "kspace_style pppm/sph/astro/gravity 1e-5",
+            "fix gas all sph/astro " + fix,
+            "fix hvar all sph/astro/h iterate hfact 1.2 tol 1e-10 margin 2.5",
+            "neighbor " + num(0.3 * 1.2 * std::cbrt(0.25)) + " bin",
+            "neigh_modify every 1 delay 0 check yes", "run 60"});
+  EXPECT_EQ(lmp->update->ntimestep, steps);
+  expect_same_x_v(lmp, x_ref, v_ref);
+  std::remove(restart.c_str());
+}
+
+TEST(GravityLongRangeSync, NeedsAGravitySolver)
+{
+  auto lmp = open_lammps();
+  falling_ball(lmp, "30", "steps individual longrange sync");
+  const auto err = error_of(lmp, "run 0");
+  EXPECT_NE(err.find("fix sph/astro: longrange sync needs kspace_style msm/sph/astro/gravity or "
+                     "pppm/sph/astro/gravity (kspace_style is none)"),
+            std::string::npos)
+      << err;
 }
 
 TEST(GravityPair, RestartContinuesBitForBit)

@@ -557,6 +557,11 @@ TEST_F(BadInputTest, IndividualStepsArguments)
   expect_error("fix gas all sph/astro steps individual kicks both", "kicks 'both' is not one of");
   expect_error("fix gas all sph/astro steps individual dt fixed", "needs dt adaptive");
   expect_error("fix gas all sph/astro steps individual xsph 0.5", "xsph is not available");
+  expect_error("fix gas all sph/astro steps individual longrange some",
+               "longrange 'some' is not one of: every, sync");
+  expect_error("fix gas all sph/astro longrange sync", "longrange sync needs steps individual");
+  expect_error("fix gas all sph/astro steps individual longdisplacement 0",
+               "longdisplacement = 0 must be in (0, 1]");
 }
 
 TEST(IndividualSteps, OptionsItDoesNotCarryAreRefused)

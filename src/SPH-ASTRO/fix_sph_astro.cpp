@@ -152,6 +152,17 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
                      "pair, 1 with kicks particle)",
                      val);
       }
+    } else if (key == "longrange") {
+      if (strcmp(val, "every") != 0 && strcmp(val, "sync") != 0)
+        error->all(FLERR, "fix sph/astro: longrange '{}' is not one of: every, sync", val);
+      long_range_sync_ = strcmp(val, "sync") == 0;
+    } else if (key == "longdisplacement") {
+      long_displacement_ = utils::numeric(FLERR, val, false, lmp);
+      if (!(long_displacement_ > 0.0) || long_displacement_ > 1.0)
+        error->all(FLERR,
+                   "fix sph/astro: longdisplacement = {} must be in (0, 1] (the largest "
+                   "displacement between long-range evaluations, over the solver's split scale)",
+                   val);
     } else if (key == "kicks") {
       if (strcmp(val, "particle") != 0 && strcmp(val, "pair") != 0)
         error->all(FLERR, "fix sph/astro: kicks '{}' is not one of: particle, pair", val);
@@ -170,7 +181,7 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
           FLERR,
           "fix sph/astro: unknown keyword '{}'; allowed: thermal, courant, vsig, force, energy, "
           "conduction, conductivity, xsph, dtmax, dtmin, tend, dt, steps, limiter, "
-          "kicks, sentinel, collapse, hshare",
+          "kicks, longrange, longdisplacement, sentinel, collapse, hshare",
           key);
     iarg += 2;
   }
@@ -183,6 +194,10 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR, "fix sph/astro needs atom IDs (atom_modify id yes) to report atoms");
   if (dtmin_ > 0.0 && dtmax_ > 0.0 && dtmin_ > dtmax_)
     error->all(FLERR, "fix sph/astro: dtmin {} is larger than dtmax {}", dtmin_, dtmax_);
+  if (long_range_sync_ && !individual)
+    error->all(FLERR,
+               "fix sph/astro: longrange sync needs steps individual (with global steps every "
+               "step is a synchronisation point)");
   if (individual) {
     if (!adaptive_)
       error->all(FLERR,
@@ -195,6 +210,7 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
     // L1(rho) 5-16 % above the global-step run's (doc/validation.md)
     if (limiter_levels_ < 0) limiter_levels_ = pair_kicks_ ? 2 : 1;
     steps_ = new IndividualSteps(lmp, this, limiter_levels_, pair_kicks_);
+    if (long_range_sync_) steps_->split_long_range(long_displacement_, force_factor_);
     comm_forward = 6;     // step begin, end, woken, end_then of changed atoms, and their index
     comm_reverse = 10;    // pair impulses and forces (and u) of the ghosts with pairs, and index
     // [5] active particles this step, [6] occupied bins, [7] particle-updates, [8] woken,
@@ -244,6 +260,7 @@ void FixSPHAstro::post_constructor()
   // per-atom values of d_rhoest d_drhodt once the fix exists again
   if (pair_has_continuity()) ensure_continuity_state(lmp, "fix sph/astro");
   if (steps_) ensure_step_state(lmp, "fix sph/astro steps individual");
+  if (long_range_sync_) ensure_long_range_state(lmp, "fix sph/astro longrange sync");
 }
 
 bool FixSPHAstro::pair_has_continuity() const
@@ -302,6 +319,14 @@ void FixSPHAstro::init()
   if (!unchanged) entropy_needs_init_ = true;    // A follows from the new u at the next density
   pair_->schedule_initialisation(entropy_ && entropy_needs_init_,
                                  continuity_ && density_needs_init_);
+  if (long_range_sync_ &&
+      !(force->kspace &&
+        (utils::strmatch(force->kspace_style, "^msm/sph/astro/gravity") ||
+         utils::strmatch(force->kspace_style, "^pppm/sph/astro/gravity"))))
+    error->all(FLERR,
+               "fix sph/astro: longrange sync needs kspace_style msm/sph/astro/gravity or "
+               "pppm/sph/astro/gravity (kspace_style is {})",
+               force->kspace ? force->kspace_style : "none");
   if (steps_) {
     steps_->check_options(pair_->options(), entropy_, igroup);
     steps_->init(*state_, unchanged);
@@ -620,7 +645,13 @@ void FixSPHAstro::criteria(int i, double dts[4]) const
   const double h = atom->dvector[state_->h][i];
   double **f = atom->f;
   const double m = atom->rmass ? atom->rmass[i] : atom->mass[atom->type[i]];
-  const double a = std::sqrt(f[i][0] * f[i][0] + f[i][1] * f[i][1] + f[i][2] * f[i][2]) / m;
+  double fi[3] = {f[i][0], f[i][1], f[i][2]};
+  // longrange sync: between synchronisation points f lacks the long range (its last value)
+  if (steps_ && steps_->long_range_split() && !steps_->long_range_due()) {
+    const double *along = steps_->long_range_acceleration(i);
+    for (int d = 0; d < 3; d++) fi[d] += m * along[d];
+  }
+  const double a = std::sqrt(fi[0] * fi[0] + fi[1] * fi[1] + fi[2] * fi[2]) / m;
   dts[0] = dt_courant(courant_, h, pair_->courant_signal_speed(i));
   dts[1] = dt_force(force_factor_, h, a);
   dts[2] = evolve_u_ && energy_factor_ > 0.0

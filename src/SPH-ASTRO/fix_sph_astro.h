@@ -72,6 +72,13 @@ class FixSPHAstro : public Fix {
   // of its step; d2_vest and d_uest hold them at the current time)
   bool mid_step(int i) const;
 
+  // longrange sync: the hierarchy the kspace gravity solvers ask whether to compute (nullptr:
+  // at every step)
+  SPHAstro::IndividualSteps *long_range_split() const
+  {
+    return long_range_sync_ ? steps_ : nullptr;
+  }
+
   // the step owned atom i's own timestep criteria allow (the smallest of them, at most dtmax;
   // infinite where none applies), at its latest force evaluation
   double own_timestep(int i) const;
@@ -136,6 +143,10 @@ class FixSPHAstro : public Fix {
   SPHAstro::IndividualSteps *steps_ = nullptr;
   SPHAstro::SyncEnergy *sync_energy_ = nullptr;    // individual steps: E at synchronisation
   bool pair_kicks_ = true;    // individual steps: pair forces and du/dt integrated pair by pair
+  // individual steps: the kspace gravity only where all particles end their step (longrange
+  // sync), with at most long_displacement_ x its split scale of displacement in between
+  bool long_range_sync_ = false;
+  double long_displacement_ = 0.02;
   // the limiter: no step more than 2^levels x a neighbour's (0: off; -1: not given, then 2 with
   // pair kicks and 1 with particle kicks)
   int limiter_levels_ = -1;

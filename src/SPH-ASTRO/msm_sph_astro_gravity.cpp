@@ -23,6 +23,7 @@
 #include "msm_sph_astro_gravity.h"
 
 #include "sph_astro_gravity_kspace.h"
+#include "sph_astro_individual_steps.h"
 
 #include "domain.h"
 #include "error.h"
@@ -77,10 +78,16 @@ void MSMSPHAstroGravity::init()
 
 void MSMSPHAstroGravity::compute(int eflag, int vflag)
 {
+  // fix sph/astro longrange sync: only where every particle ends its step (energy and forces
+  // stay those of the last such point in between), with the forces kept apart
+  IndividualSteps *split = long_range_split(lmp);
+  if (split && !split->long_range_due()) return;
   masses_to_charges(lmp);
   qsum_qsq(0);
   q2 = qsqsum * G_;
+  if (split) split->long_range_before();
   MSM::compute(eflag, vflag);
+  if (split) split->long_range_after(cutoff);
 }
 
 /* ----------------------------------------------------------------------

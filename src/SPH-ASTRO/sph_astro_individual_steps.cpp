@@ -31,6 +31,10 @@ using namespace LAMMPS_NS;
 
 namespace SPHAstro {
 
+namespace {
+  const double NO_LONG_RANGE[3] = {0.0, 0.0, 0.0};
+}
+
 IndividualSteps::IndividualSteps(LAMMPS *lmp, Fix *owner, int levels, bool pair_kicks) :
     Pointers(lmp), owner_(owner), levels_(levels), pair_kicks_(pair_kicks)
 {
@@ -82,6 +86,17 @@ void IndividualSteps::init(const StateIndex &state, bool state_unchanged)
   // (its slots follow LAMMPS' exchanges, sorts and created atoms; a run begins with all)
   auto *owned = dynamic_cast<FixSPHAstroOwned *>(modify->get_fix_by_id(STEPS_FIX_ID));
   if (owned) owned->reserve(atom->nlocal);
+  if (long_range_) {
+    accel_long_ = find_long_range_state(lmp);
+    if (accel_long_ < 0)
+      error->all(FLERR,
+                 "fix sph/astro longrange sync: the per-particle long-range state fix {} is "
+                 "missing",
+                 LONG_RANGE_FIX_ID);
+    auto *kept = dynamic_cast<FixSPHAstroOwned *>(modify->get_fix_by_id(LONG_RANGE_FIX_ID));
+    if (kept) kept->reserve(atom->nlocal);
+    long_evaluations_ = 0.0;
+  }
   continuing_ = started_ && state_unchanged && hierarchy_step_ == update->ntimestep;
   times_opened_ = times_closed_ = -1;    // the run's setup sends the ghosts anew
   bins_sent_step_ = -1;
@@ -96,6 +111,7 @@ void IndividualSteps::setup_pre_force(PairSPHAstro *pair)
   // a continued hierarchy has every particle's values from its last evaluation: the setup
   // evaluates none; a new one evaluates all
   for (int i = 0; i < nall; i++) active_[i] = !continuing_ && (mask[i] & owner_->groupbit);
+  long_due_ = long_range_ && !continuing_;
   times_opened_ = times_closed_ = bins_sent_step_ = -1;
   pair->set_active(active_.data(), records_pairs(), pair_kicks_);
 }
@@ -113,7 +129,8 @@ void IndividualSteps::start(const std::vector<double> &wanted, double dtmax, dou
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
-    for (int d = 0; d < 3; d++) accel[i][d] = f[i][d] / m;
+    const double *along = long_range_acceleration(i);
+    for (int d = 0; d < 3; d++) accel[i][d] = f[i][d] / m - along[d];
     dudt_kept[i] = dudt[i];
     if (std::isfinite(wanted[i])) top_local = std::max(top_local, wanted[i]);
   }
@@ -161,8 +178,9 @@ void IndividualSteps::start(const std::vector<double> &wanted, double dtmax, dou
     const double *sum = pair_sums(i);
     const double *rate = sum + SUM_KICKS;
     const double half = 0.5 * (end[i] - begin[i]) * tick();
+    const double *along = long_range_acceleration(i);
     for (int d = 0; d < 3; d++) {
-      accel_other[i][d] = (f[i][d] - rate[d]) / m;
+      accel_other[i][d] = (f[i][d] - rate[d]) / m - along[d];
       kick[i][d] = sum[d] / m;
       lead[i][d] = (half * rate[d] - sum[d]) / m;
     }
@@ -203,6 +221,9 @@ void IndividualSteps::kick_drift(double h_cap, bool evolve_u)
   // the pair kicks that opened at the last evaluation: those of the atoms in its pairs, or
   // (the first step of a run, which may continue one with kicks pair, or of a hierarchy) all
   const bool listed = kicked_step_ >= 0 && kicked_step_ == update->ntimestep - 1;
+  if (long_range_) long_range_interval();
+  const double *const *along = long_range_ ? atom->darray[accel_long_] : nullptr;
+  const double tau_long = (ti_next_ - long_middle_) * t;
   auto opening_kick = [&](int i) {
     for (int d = 0; d < 3; d++) {
       v[i][d] += kick[i][d];
@@ -257,6 +278,9 @@ void IndividualSteps::kick_drift(double h_cap, bool evolve_u)
       xi[d] += dt * (vi[d] + tau_drift * acceli[d] + lead_x[d]);
       vesti[d] = vi[d] + tau * acceli[d] + lead_v[d];
     }
+    // (longrange sync: v is that of the interval's middle for the long range)
+    if (along)
+      for (int d = 0; d < 3; d++) vesti[d] += tau_long * along[i][d];
     uest[i] = evolve_u ? u[i] + tau * dudt[i] + lead_u[i] : u[i];
     // rho and h follow the last div v (active particles: the h iteration's first guess)
     if (divv[i] != 0.0) {
@@ -279,10 +303,15 @@ void IndividualSteps::pre_force(PairSPHAstro *pair)
     active_[i] = (mask[i] & owner_->groupbit) && end[i] == ti_next_;
     if (active_[i]) active_list_.push_back(i);
   }
-  const double count = static_cast<double>(active_list_.size());
+  double counts[2] = {static_cast<double>(active_list_.size()), 0.0}, totals[2];
+  if (long_range_)
+    for (int i = 0; i < nlocal; i++) counts[1] += (mask[i] & owner_->groupbit) ? 1.0 : 0.0;
   comm_ = Comm::ACTIVE;
   comm->forward_comm(owner_, 2);
-  MPI_Allreduce(&count, &active_total_, 1, MPI_DOUBLE, MPI_SUM, world);
+  MPI_Allreduce(counts, totals, 2, MPI_DOUBLE, MPI_SUM, world);
+  active_total_ = totals[0];
+  // longrange sync: the kspace solver computes where every particle ends its step
+  long_due_ = long_range_ && totals[0] == totals[1];
   updates_ += active_total_;
   steps_ += 1.0;
   pair->set_active(active_.data(), records_pairs(), pair_kicks_);
@@ -312,6 +341,16 @@ void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
   if (nlocal == 0) return;
   double *ff = f[0];    // (contiguous, as in kick_drift)
   const double *accelf = accel[0];
+  // longrange sync, at a synchronisation point: the closing long-range half kick, over the
+  // interval from the earliest begin of a step (that of the longest steps)
+  double half_long = 0.0;
+  if (long_due_) {
+    double first_local = INFINITY, first;
+    for (int i = 0; i < nlocal; i++)
+      if (mask[i] & owner_->groupbit) first_local = std::min(first_local, begin[i]);
+    MPI_Allreduce(&first_local, &first, 1, MPI_DOUBLE, MPI_MIN, world);
+    if (std::isfinite(first)) half_long = 0.5 * (ti_next_ - first) * t;
+  }
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) continue;
     const double m = mass(i);
@@ -364,10 +403,12 @@ void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
         pending_next[i] = 0.0;
         std::fill_n(recent[i], RECENT_VALUES, 0.0);
       }
+      // (longrange sync: f holds a_long only at a synchronisation point, where all are active)
+      const double *along = long_due_ ? long_range_acceleration(i) : NO_LONG_RANGE;
       for (int d = 0; d < 3; d++) {
-        accel[i][d] = f[i][d] / m;
-        accel_other[i][d] = (f[i][d] - rate[d]) / m;
-        v[i][d] += half * accel_other[i][d];
+        accel[i][d] = f[i][d] / m - along[d];
+        accel_other[i][d] = (f[i][d] - rate[d]) / m - along[d];
+        v[i][d] += half * accel_other[i][d] + half_long * along[d];
       }
       dudt_kept[i] = dudt[i];
       dudt_other[i] = dudt[i] - rate[3];
@@ -385,7 +426,9 @@ void IndividualSteps::end_of_step(const std::vector<double> &wanted, PairSPHAstr
 {
   ti_now_ = ti_next_;
   hierarchy_step_ = update->ntimestep;
+  const double last_end = long_range_ && !long_due_ ? local_last_end() : 0.0;
   assign_bins(wanted, false, pair);
+  if (long_range_ && !long_due_) long_range_woken(last_end);
   // the pairs evaluated now open their next interval (the impulses only: an active particle's
   // sum_j F_ij is m (accel - accel_other) since final_kick)
   pair_impulses(pair, false, false);
@@ -442,6 +485,8 @@ void IndividualSteps::assign_bins(const std::vector<double> &wanted, bool fresh,
   double *bin = atom->dvector[idx_.bin];
   double *begin = atom->dvector[idx_.begin];
   double *end = atom->dvector[idx_.end];
+  // longrange sync: at a synchronisation point no step longer than dt_long
+  const double cap = long_due_ ? long_range_step() : INFINITY;
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & owner_->groupbit)) {
       bins_[i] = 0.0;
@@ -451,7 +496,7 @@ void IndividualSteps::assign_bins(const std::vector<double> &wanted, bool fresh,
       bins_[i] = bin[i];
       continue;
     }
-    const int want = TimeBins::bin_for(dt_max_, wanted[i]);
+    const int want = TimeBins::bin_for(dt_max_, std::min(wanted[i], cap));
     if (want > TimeBins::MAX_BIN)
       error->one(FLERR,
                  "fix sph/astro steps individual: atom {} needs a timestep {} shorter than the "
@@ -646,9 +691,13 @@ void IndividualSteps::log_summary() const
   utils::logmesg(lmp,
                  "fix sph/astro steps individual: {:.0f} particle-updates in {:.0f} steps ({:.1f} "
                  "per particle), {:.0f} woken by the limiter ({}); dt_max {:.6g}, {} occupied "
-                 "bins (bin:particles, dt = dt_max/2^bin):{}\n",
+                 "bins (bin:particles, dt = dt_max/2^bin):{}{}\n",
                  updates_, steps_, n > 0 ? updates_ / n : 0.0, woken, limiter, dt_max_, occupied,
-                 bins);
+                 bins,
+                 long_range_ ? fmt::format("; long range (longrange sync) computed {:.0f} times "
+                                           "in this run, split scale {:.6g}",
+                                           long_evaluations_, long_split_)
+                             : "");
 }
 
 std::string IndividualSteps::shortest_step() const

@@ -45,6 +45,15 @@
 // could make u negative).
 // Other forces on inactive particles are computed by LAMMPS every step and not used: an
 // inactive particle keeps a_other of its last evaluation.
+// longrange sync (split_long_range()): the long-range force of the kspace gravity solver is
+// integrated on the intervals between synchronisation points, where every particle ends its
+// step, and computed only there (Springel 2005, MNRAS 364, 1105, sec. 4: the long-range force
+// on a longer step, the short-range one sub-cycled inside it; Duncan, Levison & Lee 1998, AJ
+// 116, 2067: the splitting keeps the integrator symplectic). At a synchronisation point every
+// particle gets v += a_long (Delta_old + Delta_new) / 2, Delta the intervals' lengths; a_long is
+// not in a, a_other or the drift's parabola. No particle steps longer than
+// dt_long = min(C_d r_s / max|v|, C_f min sqrt(r_s / |a_long|)), r_s the solver's split
+// (its short-range cutoff), so that the interval is at most dt_long.
 
 #ifndef LMP_SPH_ASTRO_INDIVIDUAL_STEPS_H
 #define LMP_SPH_ASTRO_INDIVIDUAL_STEPS_H
@@ -139,6 +148,24 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   std::string shortest_step() const;
   double dt_max() const { return dt_max_; }
 
+  // longrange sync: the long-range force only at synchronisation points, on their intervals;
+  // displacement C_d and force factor C_f of dt_long (above)
+  void split_long_range(double displacement, double force_factor);
+  bool long_range_split() const { return long_range_; }
+  // does the kspace solver compute its forces in this step's evaluation (every particle ends
+  // its step with it)
+  bool long_range_due() const { return long_due_; }
+  // the kspace solver around its evaluation: the forces before it, then a_long = (f - those) / m;
+  // split_scale: r_s (collective)
+  void long_range_before();
+  void long_range_after(double split_scale);
+  // a_long of owned atom i at the last synchronisation point (zeros without longrange sync)
+  const double *long_range_acceleration(int i) const
+  {
+    static const double none[3] = {0.0, 0.0, 0.0};
+    return long_range_ ? atom->darray[accel_long_][i] : none;
+  }
+
   // forward: active flags or bins to the ghosts; reverse: the limiter's bins (max)
   int pack_forward_comm(int n, int *list, double *buf);
   void unpack_forward_comm(int n, int first, const double *buf);
@@ -196,6 +223,13 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
     SUMS
   } comm_ = Comm::ACTIVE;
   double active_total_ = 0.0, updates_ = 0.0, steps_ = 0.0, woken_ = 0.0;
+  bool long_range_ = false;    // longrange sync
+  bool long_due_ = false;      // this step's evaluation computes the long range
+  double long_displacement_ = 0.02, long_force_factor_ = 0.3, long_split_ = 0.0;
+  double long_evaluations_ = 0.0;    // of this run
+  double long_middle_ = 0.0;         // ticks: the middle of this step's interval
+  int accel_long_ = -1;              // d2_step_accel_long
+  std::vector<double> f_before_;
 
   double tick() const;
   double mass(int i) const { return atom->rmass ? atom->rmass[i] : atom->mass[atom->type[i]]; }
@@ -222,6 +256,15 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
     }
   }
   void advance_to_next();
+  // dt_long (collective; infinite without a limit)
+  double long_range_step() const;
+  // the middle of the interval between synchronisation points that holds this LAMMPS step
+  // (long_middle_), and at its start v += a_long Delta / 2 (collective)
+  void long_range_interval();
+  double local_last_end() const;    // the latest end of an owned particle's step
+  // after the limiter: the interval shortened by a wake (last_end_before: local_last_end()
+  // before it; collective)
+  void long_range_woken(double last_end_before);
 };
 
 }    // namespace SPHAstro

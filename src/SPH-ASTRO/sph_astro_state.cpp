@@ -189,6 +189,31 @@ void ensure_step_state(LAMMPS *lmp, const char *caller)
                        std::to_string(RECENT_VALUES));
 }
 
+void ensure_long_range_state(LAMMPS *lmp, const char *caller)
+{
+  if (lmp->modify->get_fix_by_id(LONG_RANGE_FIX_ID)) {
+    if (find_long_range_state(lmp) < 0)
+      lmp->error->all(FLERR, "{}: fix {} exists but does not hold d2_step_accel_long", caller,
+                      LONG_RANGE_FIX_ID);
+    return;
+  }
+  int flag, cols;
+  if (lmp->atom->find_custom("step_accel_long", flag, cols) >= 0)
+    lmp->error->all(FLERR,
+                    "{}: a custom per-atom property d2_step_accel_long already exists outside "
+                    "fix {}; SPH-ASTRO owns the names d_step_*",
+                    caller, LONG_RANGE_FIX_ID);
+  lmp->modify->add_fix(std::string(LONG_RANGE_FIX_ID) +
+                       " all sph/astro/owned d2_step_accel_long 3");
+}
+
+int find_long_range_state(LAMMPS *lmp)
+{
+  int flag, cols;
+  const int index = lmp->atom->find_custom("step_accel_long", flag, cols);
+  return (index >= 0 && flag == 1 && cols == 3) ? index : -1;
+}
+
 void clear_state(LAMMPS *lmp, int i)
 {
   Atom *atom = lmp->atom;
@@ -222,7 +247,7 @@ void clear_state(LAMMPS *lmp, int i)
     if (index >= 0 && flag == 1 && cols == 0) atom->dvector[index][i] = 0.0;
   }
   for (const char *name : {"vest", "step_accel", "step_accel_other", "step_kick", "step_pair_lead",
-                           "step_pending", "step_recent"}) {
+                           "step_pending", "step_recent", "step_accel_long"}) {
     const int index = atom->find_custom(name, flag, cols);
     if (index >= 0 && flag == 1 && cols > 0)
       for (int c = 0; c < cols; c++) atom->darray[index][i][c] = 0.0;

@@ -116,6 +116,9 @@ constexpr int PENDING_SLOTS = 4;
 constexpr int PENDING_VALUES = 5;    // close, middle, F (3)
 constexpr int RECENT_VALUES = 6;
 constexpr const char *STEPS_FIX_ID = "SPH_ASTRO_STEPS";
+// fix sph/astro longrange sync: each particle's long-range (kspace) acceleration of the last
+// synchronisation point, d2_step_accel_long (owned atoms)
+constexpr const char *LONG_RANGE_FIX_ID = "SPH_ASTRO_LONG_RANGE";
 struct StepIndex {
   int begin = -1, end = -1, bin = -1, woken = -1, end_then = -1, accel = -1, accel_other = -1,
       kick = -1, pair_lead = -1, dudt = -1, divv = -1, omega = -1, balsara = -1, nneigh = -1,
@@ -129,6 +132,9 @@ void ensure_step_state(LAMMPS_NS::LAMMPS *lmp, const char *caller);
 // ghost or a deleted atom left)
 void clear_state(LAMMPS_NS::LAMMPS *lmp, int i);
 bool find_step_state(LAMMPS_NS::LAMMPS *lmp, StepIndex &idx);
+// d2_step_accel_long (LONG_RANGE_FIX_ID): made if missing; its index (-1: none)
+void ensure_long_range_state(LAMMPS_NS::LAMMPS *lmp, const char *caller);
+int find_long_range_state(LAMMPS_NS::LAMMPS *lmp);
 
 }    // namespace SPHAstro
 

@@ -1,0 +1,146 @@
+/* ----------------------------------------------------------------------
+   SPH-ASTRO - astrophysical SPH for LAMMPS
+
+   This software is distributed under the GNU General Public License version 2
+   (the same licence as LAMMPS); see the LICENSE file.
+------------------------------------------------------------------------- */
+
+// The long-range force of IndividualSteps (fix sph/astro longrange sync;
+// sph_astro_individual_steps.h): computed where every particle ends its step and integrated on
+// the intervals between those points.
+
+#include "sph_astro_individual_steps.h"
+
+#include "atom.h"
+#include "error.h"
+#include "fix.h"
+
+#include <algorithm>
+#include <cmath>
+
+using namespace LAMMPS_NS;
+
+namespace SPHAstro {
+
+void IndividualSteps::split_long_range(double displacement, double force_factor)
+{
+  long_range_ = true;
+  long_displacement_ = displacement;
+  long_force_factor_ = force_factor;
+}
+
+void IndividualSteps::long_range_before()
+{
+  const int nlocal = atom->nlocal;
+  f_before_.resize(3 * static_cast<std::size_t>(nlocal));
+  if (nlocal > 0) std::copy_n(atom->f[0], 3 * nlocal, f_before_.begin());
+}
+
+void IndividualSteps::long_range_after(double split_scale)
+{
+  const int nlocal = atom->nlocal;
+  const int *mask = atom->mask;
+  double **f = atom->f;
+  double **along = atom->darray[accel_long_];
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & owner_->groupbit)) continue;
+    const double m = mass(i);
+    for (int d = 0; d < 3; d++) along[i][d] = (f[i][d] - f_before_[3 * i + d]) / m;
+  }
+  long_split_ = split_scale;
+  long_evaluations_ += 1.0;
+}
+
+// dt_long = min(C_d r_s / max|v|, C_f r_s^(1/2) / max|a_long|^(1/2)): in one interval no
+// particle moves more than C_d r_s, across which the long-range field is smooth (the particles'
+// rms displacement against the PM split scale in GADGET-2, Springel 2005, sec. 4), and its
+// long-range acceleration changes its velocity by at most C_f (r_s |a_long|)^(1/2)
+double IndividualSteps::long_range_step() const
+{
+  const int nlocal = atom->nlocal;
+  const int *mask = atom->mask;
+  double **v = atom->v;
+  double **along = atom->darray[accel_long_];
+  double local[2] = {0.0, 0.0}, all[2];    // the largest |v|^2 and |a_long|^2
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & owner_->groupbit)) continue;
+    local[0] = std::max(local[0], v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
+    local[1] =
+        std::max(local[1],
+                 along[i][0] * along[i][0] + along[i][1] * along[i][1] + along[i][2] * along[i][2]);
+  }
+  MPI_Allreduce(local, all, 2, MPI_DOUBLE, MPI_MAX, world);
+  if (!(long_split_ > 0.0)) return INFINITY;
+  double dt = INFINITY;
+  if (all[0] > 0.0) dt = long_displacement_ * long_split_ / std::sqrt(all[0]);
+  if (all[1] > 0.0)
+    dt = std::min(dt, long_force_factor_ * std::sqrt(long_split_ / std::sqrt(all[1])));
+  return dt;
+}
+
+// the interval between synchronisation points that holds this LAMMPS step runs from the
+// earliest begin of a particle step to the latest end (the longest steps'); where every
+// particle begins its step (the first step of a hierarchy, or after a synchronisation point),
+// it opens: v += a_long Delta / 2
+void IndividualSteps::long_range_interval()
+{
+  const int nlocal = atom->nlocal;
+  const int *mask = atom->mask;
+  const double *begin = atom->dvector[idx_.begin];
+  const double *end = atom->dvector[idx_.end];
+  double local[2] = {-INFINITY, -INFINITY}, all[2];    // the latest end, - the earliest begin
+  for (int i = 0; i < nlocal; i++)
+    if (mask[i] & owner_->groupbit) {
+      local[0] = std::max(local[0], end[i]);
+      local[1] = std::max(local[1], -begin[i]);
+    }
+  MPI_Allreduce(local, all, 2, MPI_DOUBLE, MPI_MAX, world);
+  long_middle_ = 0.5 * (all[0] - all[1]);
+  if (!std::isfinite(all[0]) || -all[1] != ti_now_) return;
+  const double half = 0.5 * (all[0] - ti_now_) * tick();
+  double **v = atom->v;
+  double **along = atom->darray[accel_long_];
+  for (int i = 0; i < nlocal; i++)
+    if (mask[i] & owner_->groupbit)
+      for (int d = 0; d < 3; d++) v[i][d] += half * along[i][d];
+}
+
+double IndividualSteps::local_last_end() const
+{
+  const int *mask = atom->mask;
+  const double *end = atom->dvector[idx_.end];
+  double last = -INFINITY;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (mask[i] & owner_->groupbit) last = std::max(last, end[i]);
+  return last;
+}
+
+// a wake of the limiter may end the interval earlier: when it shortened the longest steps, the
+// interval's opening kick and the drift since take the shorter interval,
+// v += a_long (T_new - T_old) / 2 and x += a_long (T_new - T_old) / 2 (t - t_begin)
+void IndividualSteps::long_range_woken(double last_end_before)
+{
+  const int nlocal = atom->nlocal;
+  const int *mask = atom->mask;
+  const double *begin = atom->dvector[idx_.begin];
+  // the latest end before and after the limiter, - the earliest begin
+  double local[3] = {last_end_before, local_last_end(), -INFINITY}, all[3];
+  for (int i = 0; i < nlocal; i++)
+    if (mask[i] & owner_->groupbit) local[2] = std::max(local[2], -begin[i]);
+  MPI_Allreduce(local, all, 3, MPI_DOUBLE, MPI_MAX, world);
+  const double before = all[0], after = all[1], first = -all[2];
+  if (!(after < before) || !std::isfinite(first)) return;
+  const double t = tick();
+  const double dv = 0.5 * (after - before) * t, dx = dv * (ti_now_ - first) * t;
+  double **x = atom->x;
+  double **v = atom->v;
+  double **along = atom->darray[accel_long_];
+  for (int i = 0; i < nlocal; i++)
+    if (mask[i] & owner_->groupbit)
+      for (int d = 0; d < 3; d++) {
+        v[i][d] += dv * along[i][d];
+        x[i][d] += dx * along[i][d];
+      }
+}
+
+}    // namespace SPHAstro
