@@ -12,7 +12,6 @@
 #include "sph_astro_individual_steps.h"
 
 #include "atom.h"
-#include "error.h"
 #include "fix.h"
 
 #include <algorithm>
@@ -52,8 +51,8 @@ void IndividualSteps::long_range_after(double split_scale)
 }
 
 // dt_long = min(C_d r_s / max|v|, C_f r_s^(1/2) / max|a_long|^(1/2)): in one interval no
-// particle moves more than C_d r_s, across which the long-range field is smooth (the particles'
-// rms displacement against the PM split scale in GADGET-2, Springel 2005, sec. 4), and its
+// particle moves more than C_d r_s, across which the long-range field is smooth (as GADGET-2
+// bounds the particles' rms displacement in a PM step against its split scale), and its
 // long-range acceleration changes its velocity by at most C_f (r_s |a_long|)^(1/2)
 double IndividualSteps::long_range_step() const
 {
