@@ -577,8 +577,9 @@ void hot_ball(const std::unique_ptr<LAMMPS> &lmp, const std::string &fix,
 }
 }    // namespace
 
-// the solver's forces and energy change at the synchronisation points only, and there are
-// fewer of them than steps
+// the solver's forces change at the synchronisation points only, and there are fewer of them
+// than steps; its energy, asked for at every step here (thermo pe), is that of the current
+// positions at every step
 TEST(GravityLongRangeSync, ComputedOnlyWhereEveryParticleEndsItsStep)
 {
   auto lmp = open_lammps();
@@ -601,9 +602,9 @@ TEST(GravityLongRangeSync, ComputedOnlyWhereEveryParticleEndsItsStep)
       points++;
     } else {
       EXPECT_EQ(changed, 0) << "step " << lmp->update->ntimestep;
-      EXPECT_EQ(lmp->force->kspace->energy, energy) << "step " << lmp->update->ntimestep;
       between++;
     }
+    EXPECT_NE(lmp->force->kspace->energy, energy) << "step " << lmp->update->ntimestep;
     before = now;
     energy = lmp->force->kspace->energy;
   }

@@ -63,15 +63,19 @@ void PPPMSPHAstroGravity::init()
 
 void PPPMSPHAstroGravity::compute(int eflag, int vflag)
 {
-  // fix sph/astro longrange sync: only where every particle ends its step (energy and forces
-  // stay those of the last such point in between), with the forces kept apart
+  // fix sph/astro longrange sync: the forces only where every particle ends its step, kept
+  // apart; in between only the energy and virial when asked for (its forces are taken back)
   IndividualSteps *split = long_range_split(lmp);
-  if (split && !split->long_range_due()) return;
+  const bool energy_only = split && !split->long_range_due();
+  if (energy_only && !eflag && !vflag) return;
   // masses may change (per-atom masses, atoms added or lost): refresh q, sum m and sum m^2
   masses_to_charges(lmp);
   qsum_qsq(0);
   q2 = qsqsum * G_;
   if (split) split->long_range_before();
   PPPM::compute(eflag, vflag);
-  if (split) split->long_range_after(cutoff);
+  if (energy_only)
+    split->long_range_discard();
+  else if (split)
+    split->long_range_after(cutoff);
 }

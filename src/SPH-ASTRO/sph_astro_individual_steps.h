@@ -156,9 +156,11 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   // its step with it)
   bool long_range_due() const { return long_due_; }
   // the kspace solver around its evaluation: the forces before it, then a_long = (f - those) / m;
-  // split_scale: r_s (collective)
+  // split_scale: r_s
   void long_range_before();
   void long_range_after(double split_scale);
+  // ... or the forces before it back (an evaluation for the energy alone)
+  void long_range_discard();
   // a_long of owned atom i at the last synchronisation point (zeros without longrange sync)
   const double *long_range_acceleration(int i) const
   {

@@ -50,6 +50,12 @@ void IndividualSteps::long_range_after(double split_scale)
   long_evaluations_ += 1.0;
 }
 
+void IndividualSteps::long_range_discard()
+{
+  const int nlocal = atom->nlocal;
+  if (nlocal > 0) std::copy_n(f_before_.begin(), 3 * nlocal, atom->f[0]);
+}
+
 // dt_long = min(C_d r_s / max|v|, C_f r_s^(1/2) / max|a_long|^(1/2)): in one interval no
 // particle moves more than C_d r_s, across which the long-range field is smooth (as GADGET-2
 // bounds the particles' rms displacement in a PM step against its split scale), and its
