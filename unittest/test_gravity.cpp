@@ -580,7 +580,7 @@ void hot_ball(const std::unique_ptr<LAMMPS> &lmp, const std::string &fix,
 // the solver's forces change at the synchronisation points only, and there are fewer of them
 // than steps; its energy, asked for at every step here (thermo pe), is that of the current
 // positions at every step
-TEST(GravityLongRangeSync, ComputedOnlyWhereEveryParticleEndsItsStep)
+TEST(GravityLongRangeSync, ForcesOnlyWhereEveryParticleEndsItsStep)
 {
   auto lmp = open_lammps();
   hot_ball(lmp, "courant 0.3 steps individual tend 0.4 longrange sync");
