@@ -315,18 +315,10 @@ void FixSPHAstro::init()
   // predictions are kept only when they belong to this step and v and u (and rho) are as the
   // last run left them (a continued or restarted run); after `velocity` or `set` they start
   // anew
-  const bool unchanged = hash_velocity_energy() == state_hash_;
+  const bool unchanged = state_hash(lmp, *state_, pair_has_continuity()) == state_hash_;
   if (!unchanged) entropy_needs_init_ = true;    // A follows from the new u at the next density
   pair_->schedule_initialisation(entropy_ && entropy_needs_init_,
                                  continuity_ && density_needs_init_);
-  if (long_range_sync_ &&
-      !(force->kspace &&
-        (utils::strmatch(force->kspace_style, "^msm/sph/astro/gravity") ||
-         utils::strmatch(force->kspace_style, "^pppm/sph/astro/gravity"))))
-    error->all(FLERR,
-               "fix sph/astro: longrange sync needs kspace_style msm/sph/astro/gravity or "
-               "pppm/sph/astro/gravity (kspace_style is {})",
-               force->kspace ? force->kspace_style : "none");
   if (steps_) {
     steps_->check_options(pair_->options(), entropy_, igroup);
     steps_->init(*state_, unchanged);
@@ -586,39 +578,7 @@ void FixSPHAstro::post_run()
   if (stopped_at_tend_) timer->reset_timeout();
   // a fixed step shortened to land on tend is the user's step again
   if (!adaptive_ && update->dt != user_dt_) set_timestep(user_dt_);
-  state_hash_ = hash_velocity_energy();
-}
-
-// order-independent hash of every atom's ID, v and u (and rho, integrated with density
-// continuity): XOR over atoms of a mixed 64-bit value
-uint64_t FixSPHAstro::hash_velocity_energy() const
-{
-  auto mix = [](uint64_t z) {    // splitmix64 finaliser
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-  };
-  auto bits = [](double value) {
-    uint64_t b;
-    memcpy(&b, &value, sizeof(b));
-    return b;
-  };
-  const double *u = atom->dvector[state_->u];
-  const double *rho = pair_has_continuity() ? atom->dvector[state_->rho] : nullptr;
-  double **v = atom->v;
-  uint64_t local = 0;
-  for (int i = 0; i < atom->nlocal; i++) {
-    uint64_t h = mix(static_cast<uint64_t>(atom->tag[i]));
-    h = mix(h ^ bits(v[i][0]));
-    h = mix(h ^ bits(v[i][1]));
-    h = mix(h ^ bits(v[i][2]));
-    h = mix(h ^ bits(u[i]));
-    if (rho) h = mix(h ^ bits(rho[i]));
-    local ^= h;
-  }
-  uint64_t all = 0;
-  MPI_Allreduce(&local, &all, 1, MPI_UINT64_T, MPI_BXOR, world);
-  return all;
+  state_hash_ = state_hash(lmp, *state_, pair_has_continuity());
 }
 
 // make thermo (and the computes it needs) report the step that reaches tend. All computes
@@ -861,7 +821,7 @@ double FixSPHAstro::reference_energy(const std::string &compute_id, double curre
 void FixSPHAstro::write_restart(FILE *fp)
 {
   // restart files written during a run (restart command) need the hash of this step
-  state_hash_ = hash_velocity_energy();
+  state_hash_ = state_hash(lmp, *state_, pair_has_continuity());
   if (comm->me != 0) return;
   std::vector<double> list = {
       static_cast<double>(predicted_step_), static_cast<double>(state_hash_ >> 32),

@@ -163,7 +163,6 @@ class FixSPHAstro : public Fix {
   void next_timestep(bool from_end_of_step = false);
   void set_timestep(double dt);
   double current_time() const;
-  uint64_t hash_velocity_energy() const;
   void schedule_output(bigint step);
 };
 

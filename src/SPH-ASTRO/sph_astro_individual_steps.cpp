@@ -18,6 +18,7 @@
 #include "domain.h"
 #include "error.h"
 #include "fix.h"
+#include "force.h"
 #include "group.h"
 #include "modify.h"
 #include "neighbor.h"
@@ -30,10 +31,6 @@
 using namespace LAMMPS_NS;
 
 namespace SPHAstro {
-
-namespace {
-  const double NO_LONG_RANGE[3] = {0.0, 0.0, 0.0};
-}
 
 IndividualSteps::IndividualSteps(LAMMPS *lmp, Fix *owner, int levels, bool pair_kicks) :
     Pointers(lmp), owner_(owner), levels_(levels), pair_kicks_(pair_kicks)
@@ -74,6 +71,14 @@ void IndividualSteps::check_options(const PairOptions &o, bool entropy, int igro
                "fix sph/astro steps individual: group {} must hold all particles (each pair "
                "is evaluated when one of its particles is active)",
                group->names[igroup]);
+  if (long_range_ &&
+      !(force->kspace &&
+        (utils::strmatch(force->kspace_style, "^msm/sph/astro/gravity") ||
+         utils::strmatch(force->kspace_style, "^pppm/sph/astro/gravity"))))
+    error->all(FLERR,
+               "fix sph/astro: longrange sync needs kspace_style msm/sph/astro/gravity or "
+               "pppm/sph/astro/gravity (kspace_style is {})",
+               force->kspace ? force->kspace_style : "none");
 }
 
 void IndividualSteps::init(const StateIndex &state, bool state_unchanged)
@@ -404,11 +409,19 @@ void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
         std::fill_n(recent[i], RECENT_VALUES, 0.0);
       }
       // (longrange sync: f holds a_long only at a synchronisation point, where all are active)
-      const double *along = long_due_ ? long_range_acceleration(i) : NO_LONG_RANGE;
-      for (int d = 0; d < 3; d++) {
-        accel[i][d] = f[i][d] / m - along[d];
-        accel_other[i][d] = (f[i][d] - rate[d]) / m - along[d];
-        v[i][d] += half * accel_other[i][d] + half_long * along[d];
+      if (long_due_) {
+        const double *along = long_range_acceleration(i);
+        for (int d = 0; d < 3; d++) {
+          accel[i][d] = f[i][d] / m - along[d];
+          accel_other[i][d] = (f[i][d] - rate[d]) / m - along[d];
+          v[i][d] += half * accel_other[i][d] + half_long * along[d];
+        }
+      } else {
+        for (int d = 0; d < 3; d++) {
+          accel[i][d] = f[i][d] / m;
+          accel_other[i][d] = (f[i][d] - rate[d]) / m;
+          v[i][d] += half * accel_other[i][d];
+        }
       }
       dudt_kept[i] = dudt[i];
       dudt_other[i] = dudt[i] - rate[3];

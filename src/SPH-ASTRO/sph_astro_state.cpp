@@ -17,7 +17,9 @@
 #include "lammps.h"
 #include "modify.h"
 
+#include <cstdint>
 #include <cstring>
+#include <mpi.h>
 #include <string>
 
 using namespace LAMMPS_NS;
@@ -187,6 +189,38 @@ void ensure_step_state(LAMMPS *lmp, const char *caller)
                        "d2_step_pending " +
                        std::to_string(PENDING_SLOTS * PENDING_VALUES) + " d2_step_recent " +
                        std::to_string(RECENT_VALUES));
+}
+
+// XOR over atoms of a mixed 64-bit value (the splitmix64 finaliser)
+std::uint64_t state_hash(LAMMPS *lmp, const StateIndex &state, bool with_rho)
+{
+  auto mix = [](std::uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  };
+  auto bits = [](double value) {
+    std::uint64_t b;
+    memcpy(&b, &value, sizeof(b));
+    return b;
+  };
+  Atom *atom = lmp->atom;
+  const double *u = atom->dvector[state.u];
+  const double *rho = with_rho ? atom->dvector[state.rho] : nullptr;
+  double **v = atom->v;
+  std::uint64_t local = 0;
+  for (int i = 0; i < atom->nlocal; i++) {
+    std::uint64_t h = mix(static_cast<std::uint64_t>(atom->tag[i]));
+    h = mix(h ^ bits(v[i][0]));
+    h = mix(h ^ bits(v[i][1]));
+    h = mix(h ^ bits(v[i][2]));
+    h = mix(h ^ bits(u[i]));
+    if (rho) h = mix(h ^ bits(rho[i]));
+    local ^= h;
+  }
+  std::uint64_t all = 0;
+  MPI_Allreduce(&local, &all, 1, MPI_UINT64_T, MPI_BXOR, lmp->world);
+  return all;
 }
 
 void ensure_long_range_state(LAMMPS *lmp, const char *caller)

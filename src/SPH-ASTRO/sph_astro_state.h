@@ -26,6 +26,8 @@
 #ifndef LMP_SPH_ASTRO_STATE_H
 #define LMP_SPH_ASTRO_STATE_H
 
+#include <cstdint>
+
 namespace LAMMPS_NS {
 class LAMMPS;
 class Fix;
@@ -132,6 +134,10 @@ void ensure_step_state(LAMMPS_NS::LAMMPS *lmp, const char *caller);
 // ghost or a deleted atom left)
 void clear_state(LAMMPS_NS::LAMMPS *lmp, int i);
 bool find_step_state(LAMMPS_NS::LAMMPS *lmp, StepIndex &idx);
+
+// order-independent hash of every owned atom's ID, v and u (and rho with with_rho: integrated
+// with density continuity), over all ranks: whether the state changed between two runs
+std::uint64_t state_hash(LAMMPS_NS::LAMMPS *lmp, const StateIndex &state, bool with_rho);
 // d2_step_accel_long (LONG_RANGE_FIX_ID): made if missing; its index (-1: none)
 void ensure_long_range_state(LAMMPS_NS::LAMMPS *lmp, const char *caller);
 int find_long_range_state(LAMMPS_NS::LAMMPS *lmp);
