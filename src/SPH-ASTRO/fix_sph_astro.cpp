@@ -59,9 +59,9 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 using namespace SPHAstro;
 
-// the reference-energy count of a restart record is raised by this when an individual-step
-// block follows
-static constexpr double STEP_BLOCK = 1 << 20;
+// the reference-energy count of a restart record is raised by these when the shrink-wrap
+// padding (3 values) and an individual-step block follow
+static constexpr int STEP_BLOCK = 1 << 20, PADDING_BLOCK = 1 << 21;
 
 FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), state_(new StateIndex()), entropy_index_(new EntropyIndex()),
@@ -826,12 +826,13 @@ void FixSPHAstro::write_restart(FILE *fp)
   std::vector<double> list = {
       static_cast<double>(predicted_step_), static_cast<double>(state_hash_ >> 32),
       static_cast<double>(state_hash_ & 0xffffffffULL),
-      static_cast<double>(reference_energy_.size()) + (steps_ ? STEP_BLOCK : 0.0)};
+      static_cast<double>(reference_energy_.size() + (steps_ ? STEP_BLOCK : 0) + PADDING_BLOCK)};
   for (const auto &[id, energy] : reference_energy_) {
     list.push_back(static_cast<double>(id.size()));
     for (char c : id) list.push_back(static_cast<double>(c));
     list.push_back(energy);
   }
+  for (int d = 0; d < 3; d++) list.push_back(DomainPadding::of(domain)[d]);
   if (steps_) steps_->write_restart(list);
   int size = static_cast<int>(list.size() * sizeof(double));
   fwrite(&size, sizeof(int), 1, fp);
@@ -847,10 +848,8 @@ void FixSPHAstro::restart(char *buf)
   predicted_step_ = static_cast<bigint>(list[n++]);
   state_hash_ = static_cast<uint64_t>(list[n++]) << 32;
   state_hash_ |= static_cast<uint64_t>(list[n++]);
-  double count = list[n++];
-  const bool step_block = count >= STEP_BLOCK;
-  if (step_block) count -= STEP_BLOCK;
-  const int nref = static_cast<int>(count);
+  const int count = static_cast<int>(list[n++]);
+  const int nref = count & (STEP_BLOCK - 1);
   reference_energy_.clear();
   for (int k = 0; k < nref; k++) {
     const int len = static_cast<int>(list[n++]);
@@ -858,8 +857,9 @@ void FixSPHAstro::restart(char *buf)
     for (int c = 0; c < len; c++) id += static_cast<char>(list[n++]);
     reference_energy_[id] = list[n++];
   }
+  if (count & PADDING_BLOCK) n += restore_shrink_wrap_padding(domain, list + n);
   // a hierarchy of individual steps continues where it was (if this fix steps individually)
-  if (step_block && steps_) steps_->read_restart(list + n);
+  if ((count & STEP_BLOCK) && steps_) steps_->read_restart(list + n);
 }
 
 /* ----------------------------------------------------------------------

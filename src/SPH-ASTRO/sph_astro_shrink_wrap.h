@@ -9,6 +9,12 @@
 // of it before the next one (an expanding gas moves up to half the skin) lies beyond the grid of
 // MSM, which stops with "Out of range atoms". fix sph/astro makes such a step a reneighbouring
 // one, where LAMMPS wraps the box around the atoms again.
+//
+// LAMMPS pads a shrink-wrapped side by 1e-4 of the box length the box had when it was set
+// (Domain::small, from Domain::set_initial_box); read_restart sets that padding anew from the
+// restart file's box. A continued run would wrap a narrower box than the uninterrupted one,
+// and MSM, whose grid spacing is the box length over its grid points, would give other forces
+// (1e-7 relative on a collapsing ball). fix sph/astro keeps the padding in its restart record.
 
 #ifndef LMP_SPH_ASTRO_SHRINK_WRAP_H
 #define LMP_SPH_ASTRO_SHRINK_WRAP_H
@@ -38,6 +44,21 @@ inline bool atom_left_shrink_wrapped_box(LAMMPS_NS::LAMMPS *lmp)
   int any = 0;
   MPI_Allreduce(&outside, &any, 1, MPI_INT, MPI_MAX, lmp->world);
   return any != 0;
+}
+
+// Domain::small is protected: a pointer to it, named through a derived class (never made)
+class DomainPadding : public LAMMPS_NS::Domain {
+ public:
+  static double *of(LAMMPS_NS::Domain *domain) { return domain->*(&DomainPadding::small); }
+};
+
+// the padding of a restart record back into the domain (shrink-wrapped sides only use it);
+// returns the number of values read
+inline int restore_shrink_wrap_padding(LAMMPS_NS::Domain *domain, const double *list)
+{
+  double *small = DomainPadding::of(domain);
+  for (int d = 0; d < 3; d++) small[d] = list[d];
+  return 3;
 }
 
 }    // namespace SPHAstro
