@@ -13,24 +13,31 @@ and prints one line per figure:
   - the time of maximum compression (minimum of W) and K, U, W, E there,
   - the kinetic-energy maximum,
   - K, U, W, E at t = 0.8 and t = 3 (linear interpolation between thermo rows),
-  - wall time and steps.
+  - wall time and steps,
+  - the particle-updates (column v_updates) at t = 0.8, at maximum compression and at the
+    end; with --global LOG (a global-step run of the same scene) how many times fewer they are
+    than that run's at the same times, and, if that run had -var ownrate yes (column
+    v_ownupdates), how many times fewer the particles' own rates would need.
 The initial state is compared with its continuum values: W0 = -2/3 G M^2/R for rho ~ 1/r,
 U0 = M u0 = 0.05, K0 = 0. Published curves (Evrard 1988, Fig. of the energies; Springel 2005,
 GADGET-2) are not reproduced as numbers here: see README.md.
 
-Usage: analyse.py LOG [--png FILE] [--assert maxerr=X,maxerr_sync=Y]
+Usage: analyse.py LOG [--global LOG] [--png FILE] [--assert maxerr=X,maxerr_sync=Y]
 """
 import argparse
 import sys
 
 from sphastro import cli
-from sphastro.evrard import at_time, read_log, read_sync_energy
+from sphastro.evrard import at_time, read_log, read_sync_energy, updates_against
 
 
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("log")
     p.add_argument("--png", help="write the energy curves to this PNG")
+    p.add_argument("--global", dest="global_log",
+                   help="log of a global-step run of the same scene: the particle-updates "
+                        "against it")
     cli.add_assert_argument(p, "comma-separated bounds, e.g. maxerr=2e-3: exit 1 when exceeded")
     args = p.parse_args()
     try:
@@ -68,6 +75,13 @@ def main():
             continue
         vals = [at_time(rows, min(t, tend), k) for k in (K, U, W, E)]
         print(f"t = {t}: K {vals[0]:.4f} U {vals[1]:.4f} W {vals[2]:.4f} E {vals[3]:.4f}")
+    if "v_updates" in r0:
+        try:
+            reference = read_log(args.global_log)[0] if args.global_log else None
+        except ValueError as exc:
+            sys.exit(f"analyse.py: {exc}")
+        print_updates(rows, [(0.8, "t = 0.8"), (rm["Time"], "maximum compression"),
+                             (tend, "the end")], reference)
 
     if args.png:
         import matplotlib
@@ -94,6 +108,23 @@ def main():
         return cli.assert_bounds(args.bounds, {"maxerr": maxerr, "maxerr_sync": maxerr_sync},
                                  error=p.error)
     return 0
+
+
+def print_updates(rows, times, reference):
+    """The particle-updates at each (time, label) up to the run's end, and the times fewer than
+    the global-step run ``reference`` (rows, or None) had at the same time."""
+    for t, label in times:
+        updates, fewer, own_fewer = updates_against(rows, reference, t)
+        if updates is None:
+            continue
+        line = f"particle-updates to {label} (t {t:.3f}): {updates:.4g}"
+        if fewer is not None:
+            line += f", {fewer:.2f}x fewer than the global-step run"
+            if own_fewer is not None:
+                line += f" (the particles' own rates: {own_fewer:.2f}x fewer)"
+        elif reference:
+            line += " (the global-step run does not reach it)"
+        print(line)
 
 
 if __name__ == "__main__":

@@ -1,6 +1,7 @@
 """The Evrard collapse (Evrard 1988, MNRAS 235, 911): the energies of an SPH-ASTRO run from its
 LAMMPS log (examples/evrard/in.evrard: thermo Step Time Dt c_sum[8..12] = kinetic K, thermal U,
-potential W, total E, (E - E0)/|E0|)."""
+potential W, total E, (E - E0)/|E0|; v_updates = particle-updates since the start, and with
+-var ownrate yes v_ownupdates = those the particles' own rates would need)."""
 import re
 
 _SYNC = re.compile(r"relative energy error at the (\d+) synchronisation points of the run: "
@@ -57,3 +58,18 @@ def read_sync_energy(path):
             points += int(m.group(1))
             largest = max(largest or 0.0, float(m.group(2)))
     return largest, points
+
+
+def updates_against(rows, reference, t):
+    """Particle-updates of ``rows`` to time ``t`` (None past its end) and, against the
+    global-step run ``reference`` (rows, or None), how many times fewer they are than its
+    updates to the same time and how many times fewer the particles' own rates need (its
+    v_ownupdates column): (updates, fewer, own_fewer), the last two None where not known."""
+    updates = at_time(rows, t, "v_updates")
+    if updates is None or not reference:
+        return updates, None, None
+    ref = at_time(reference, t, "v_updates")
+    if ref is None or updates <= 0:
+        return updates, None, None
+    own = at_time(reference, t, "v_ownupdates") if "v_ownupdates" in reference[0] else None
+    return updates, ref / updates, (ref / own if own else None)
