@@ -32,7 +32,9 @@ class MSMSPHAstroGravity : public MSM {
 
  protected:
   double G_;
+  double spacing_[3] = {0.0, 0.0, 0.0};    // finest grid spacing of the run start (0: none)
 
+  void refine_grid_to_box();
   void set_grid_local_corners();
 };
 
