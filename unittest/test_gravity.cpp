@@ -166,9 +166,9 @@ INSTANTIATE_TEST_SUITE_P(
 
 // a shrink-wrapped box that grows within a run: LAMMPS keeps MSM's number of grid points, so
 // its spacing would grow with the box and its error as (h/a)^(p-1); msm/sph/astro/gravity
-// doubles the points along an axis whenever the spacing exceeds that chosen at init. The
-// cloud expands freely (G tiny) to 2.2x its radius in one run: the forces of its last step
-// stay within the accuracy's bound (3.1e-3 with the init grid kept)
+// doubles the points along an axis whenever the spacing exceeds that of the run's start. The
+// cloud expands freely (G tiny) in one run, its box (boundary m) from 12 to 20.5: the forces
+// of its last step stay within the accuracy's bound (3.1e-3 with the grid of the start kept)
 TEST(GravityKSpaceGrowingBox, MSMKeepsItsGridSpacing)
 {
   auto lmp = open_lammps();

@@ -14,7 +14,7 @@
 // (Domain::small, from Domain::set_initial_box); read_restart sets that padding anew from the
 // restart file's box. A continued run would wrap a narrower box than the uninterrupted one,
 // and MSM, whose grid spacing is the box length over its grid points, would give other forces
-// (1e-7 relative on a collapsing ball). fix sph/astro keeps the padding in its restart record.
+// (8e-8 apart on a collapsing ball of the tests). fix sph/astro keeps the padding in its restart record.
 
 #ifndef LMP_SPH_ASTRO_SHRINK_WRAP_H
 #define LMP_SPH_ASTRO_SHRINK_WRAP_H
