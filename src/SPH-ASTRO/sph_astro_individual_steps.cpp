@@ -350,10 +350,8 @@ void IndividualSteps::final_kick(bool evolve_u, PairSPHAstro *pair)
   // interval from the earliest begin of a step (that of the longest steps)
   double half_long = 0.0;
   if (long_due_) {
-    double first_local = INFINITY, first;
-    for (int i = 0; i < nlocal; i++)
-      if (mask[i] & owner_->groupbit) first_local = std::min(first_local, begin[i]);
-    MPI_Allreduce(&first_local, &first, 1, MPI_DOUBLE, MPI_MIN, world);
+    double first, last;
+    interval_ticks(first, last);
     if (std::isfinite(first)) half_long = 0.5 * (ti_next_ - first) * t;
   }
   for (int i = 0; i < nlocal; i++) {
@@ -439,7 +437,8 @@ void IndividualSteps::end_of_step(const std::vector<double> &wanted, PairSPHAstr
 {
   ti_now_ = ti_next_;
   hierarchy_step_ = update->ntimestep;
-  const double last_end = long_range_ && !long_due_ ? local_last_end() : 0.0;
+  double first = 0.0, last_end = 0.0;
+  if (long_range_ && !long_due_) interval_ticks(first, last_end);
   assign_bins(wanted, false, pair);
   if (long_range_ && !long_due_) long_range_woken(last_end);
   // the pairs evaluated now open their next interval (the impulses only: an active particle's

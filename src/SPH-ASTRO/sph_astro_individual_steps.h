@@ -263,8 +263,9 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   // the middle of the interval between synchronisation points that holds this LAMMPS step
   // (long_middle_), and at its start v += a_long Delta / 2 (collective)
   void long_range_interval();
-  double local_last_end() const;    // the latest end of an owned particle's step
-  // after the limiter: the interval shortened by a wake (last_end_before: local_last_end()
+  // the earliest begin and the latest end of a particle step, in ticks (collective)
+  void interval_ticks(double &first_begin, double &last_end) const;
+  // after the limiter: the interval shortened by a wake (last_end_before: the latest end
   // before it; collective)
   void long_range_woken(double last_end_before);
 };

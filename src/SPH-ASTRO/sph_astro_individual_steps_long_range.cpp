@@ -83,41 +83,41 @@ double IndividualSteps::long_range_step() const
   return dt;
 }
 
+// the earliest begin and the latest end of a particle step, in ticks (collective; +inf and
+// -inf for an empty group)
+void IndividualSteps::interval_ticks(double &first_begin, double &last_end) const
+{
+  const int *mask = atom->mask;
+  const double *begin = atom->dvector[idx_.begin];
+  const double *end = atom->dvector[idx_.end];
+  double local[2] = {-INFINITY, -INFINITY}, all[2];    // the latest end, - the earliest begin
+  for (int i = 0; i < atom->nlocal; i++)
+    if (mask[i] & owner_->groupbit) {
+      local[0] = std::max(local[0], end[i]);
+      local[1] = std::max(local[1], -begin[i]);
+    }
+  MPI_Allreduce(local, all, 2, MPI_DOUBLE, MPI_MAX, world);
+  last_end = all[0];
+  first_begin = -all[1];
+}
+
 // the interval between synchronisation points that holds this LAMMPS step runs from the
 // earliest begin of a particle step to the latest end (the longest steps'); where every
 // particle begins its step (the first step of a hierarchy, or after a synchronisation point),
 // it opens: v += a_long Delta / 2
 void IndividualSteps::long_range_interval()
 {
-  const int nlocal = atom->nlocal;
+  double first, last;
+  interval_ticks(first, last);
+  long_middle_ = 0.5 * (first + last);
+  if (!std::isfinite(last) || first != ti_now_) return;
+  const double half = 0.5 * (last - ti_now_) * tick();
   const int *mask = atom->mask;
-  const double *begin = atom->dvector[idx_.begin];
-  const double *end = atom->dvector[idx_.end];
-  double local[2] = {-INFINITY, -INFINITY}, all[2];    // the latest end, - the earliest begin
-  for (int i = 0; i < nlocal; i++)
-    if (mask[i] & owner_->groupbit) {
-      local[0] = std::max(local[0], end[i]);
-      local[1] = std::max(local[1], -begin[i]);
-    }
-  MPI_Allreduce(local, all, 2, MPI_DOUBLE, MPI_MAX, world);
-  long_middle_ = 0.5 * (all[0] - all[1]);
-  if (!std::isfinite(all[0]) || -all[1] != ti_now_) return;
-  const double half = 0.5 * (all[0] - ti_now_) * tick();
   double **v = atom->v;
   double **along = atom->darray[accel_long_];
-  for (int i = 0; i < nlocal; i++)
+  for (int i = 0; i < atom->nlocal; i++)
     if (mask[i] & owner_->groupbit)
       for (int d = 0; d < 3; d++) v[i][d] += half * along[i][d];
-}
-
-double IndividualSteps::local_last_end() const
-{
-  const int *mask = atom->mask;
-  const double *end = atom->dvector[idx_.end];
-  double last = -INFINITY;
-  for (int i = 0; i < atom->nlocal; i++)
-    if (mask[i] & owner_->groupbit) last = std::max(last, end[i]);
-  return last;
 }
 
 // a wake of the limiter may end the interval earlier: when it shortened the longest steps, the
@@ -125,22 +125,16 @@ double IndividualSteps::local_last_end() const
 // v += a_long (T_new - T_old) / 2 and x += a_long (T_new - T_old) / 2 (t - t_begin)
 void IndividualSteps::long_range_woken(double last_end_before)
 {
-  const int nlocal = atom->nlocal;
-  const int *mask = atom->mask;
-  const double *begin = atom->dvector[idx_.begin];
-  // the latest end before and after the limiter, - the earliest begin
-  double local[3] = {last_end_before, local_last_end(), -INFINITY}, all[3];
-  for (int i = 0; i < nlocal; i++)
-    if (mask[i] & owner_->groupbit) local[2] = std::max(local[2], -begin[i]);
-  MPI_Allreduce(local, all, 3, MPI_DOUBLE, MPI_MAX, world);
-  const double before = all[0], after = all[1], first = -all[2];
-  if (!(after < before) || !std::isfinite(first)) return;
+  double first, after;
+  interval_ticks(first, after);
+  if (!(after < last_end_before) || !std::isfinite(first)) return;
   const double t = tick();
-  const double dv = 0.5 * (after - before) * t, dx = dv * (ti_now_ - first) * t;
+  const double dv = 0.5 * (after - last_end_before) * t, dx = dv * (ti_now_ - first) * t;
+  const int *mask = atom->mask;
   double **x = atom->x;
   double **v = atom->v;
   double **along = atom->darray[accel_long_];
-  for (int i = 0; i < nlocal; i++)
+  for (int i = 0; i < atom->nlocal; i++)
     if (mask[i] & owner_->groupbit)
       for (int d = 0; d < 3; d++) {
         v[i][d] += dv * along[i][d];
