@@ -19,6 +19,7 @@ snapshots in SWIFT's layout (PartType0/Coordinates, Masses, Density, SmoothingLe
 Velocities, InternalEnergies; read with h5py).
 """
 
+import argparse
 import math
 import os
 
@@ -96,9 +97,12 @@ class Particles:
                 raise KeyError("field 'v' needs the columns vx, vy (, vz)")
             return np.sqrt(sum(c * c for c in comps))
         if name not in self.fields:
-            raise KeyError(f"no field '{name}' (available: rho, h, mass, "
-                           f"{', '.join(sorted(self.fields))}{', v' if 'vx' in self.fields else ''})")
+            raise KeyError(f"no field '{name}' (available: {', '.join(self.available())})")
         return self.fields[name]
+
+    def available(self):
+        """The names :meth:`field` knows: rho, h, mass, the further fields, v with velocities."""
+        return ["rho", "h", "mass", *sorted(self.fields)] + (["v"] if "vx" in self.fields else [])
 
 
 def periodic_images(p, axes=None):
@@ -129,7 +133,10 @@ def _is_hdf5(path):
         return f.read(8) == b"\x89HDF\r\n\x1a\n"
 
 
-def _read_hdf5(path, h_factor=None):
+def _read_hdf5(path, h_factor=None, frame=-1):
+    if frame not in (0, -1):
+        raise ValueError(f"--frame {frame}: {path} is an HDF5 snapshot, one frame "
+                         "(allowed: 0 or -1)")
     try:
         import h5py
     except ImportError:
@@ -177,8 +184,10 @@ def _read_dump(path, mass=None, hfact=1.2, h_factor=None, frame=-1):
         frame = read_last_frame(path)
     else:
         frames = list(read_frames(path))
-        if not -len(frames) <= frame < len(frames):
-            raise ValueError(f"{path}: frame {frame} does not exist ({len(frames)} frames)")
+        n = len(frames)
+        if not -n <= frame < n:
+            raise ValueError(f"--frame {frame}: {path} has {n} frame{'s' if n != 1 else ''} "
+                             f"(allowed: {-n} to {n - 1})")
         frame = frames[frame]
     c = frame.columns
     axes = [a for a in ("x", "y", "z") if a in c]
@@ -223,7 +232,7 @@ def read_particles(path, mass=None, hfact=1.2, h_factor=None, frame=-1):
     if not os.path.exists(path):
         raise FileNotFoundError(f"{path}: no such file")
     if _is_hdf5(path):
-        return _read_hdf5(path, h_factor)
+        return _read_hdf5(path, h_factor, frame)
     return _read_dump(path, mass, hfact, h_factor, frame)
 
 
@@ -334,19 +343,119 @@ def column_map(p, values, axis="z", res=256, extent=None):
     return img, extent
 
 
-def _parse_slice(text):
+#: the most pixels a map may have across either axis: the PNG shows about 300 across, and
+#: 4096^2 doubles are 134 MB per array the deposit holds
+MAX_RES = 4096
+
+
+def _option_value(what):
+    """An argparse ``type`` check: ``what`` (the allowed values) is said in the message, which
+    argparse prefixes with "argument --OPTION:" and ends with the exit status 2."""
+    def decorate(parse):
+        def check(text):
+            try:
+                return parse(text)
+            except (ValueError, TypeError):
+                raise argparse.ArgumentTypeError(f"expected {what}, got {text!r}") from None
+        check.__name__ = parse.__name__
+        return check
+    return decorate
+
+
+def _finite(text):
+    # float() accepts "nan" and "inf": neither places a plane, a window or a colour limit
+    v = float(text)
+    if not math.isfinite(v):
+        raise ValueError(text)
+    return v
+
+
+@_option_value("a positive finite number")
+def _positive(text):
+    v = _finite(text)
+    if v <= 0.0:
+        raise ValueError(text)
+    return v
+
+
+@_option_value(f"a whole number of pixels from 1 to {MAX_RES}")
+def _pixels(text):
+    v = int(text)
+    if not 1 <= v <= MAX_RES:
+        raise ValueError(text)
+    return v
+
+
+@_option_value("AXIS=VALUE with AXIS x, y or z and VALUE a finite number (e.g. z=0.5)")
+def _slice(text):
     axis, sep, value = text.partition("=")
     if axis not in AXES or not sep:
-        raise ValueError(f"--slice: expected x=V, y=V or z=V, got {text!r}")
-    return axis, float(value)
+        raise ValueError(text)
+    return axis, _finite(value)
 
 
-def _parse_pair(text, what):
-    try:
-        lo, hi = (float(v) for v in text.split(","))
-    except ValueError:
-        raise ValueError(f"{what}: expected LO,HI, got {text!r}") from None
+@_option_value("LO,HI: two finite numbers with LO < HI (log10 of the map with --log)")
+def _range(text):
+    lo, hi = (_finite(v) for v in text.split(","))
+    if not lo < hi:
+        raise ValueError(text)
     return lo, hi
+
+
+@_option_value("X0,X1,Y0,Y1: four finite numbers with X0 < X1 and Y0 < Y1")
+def _window(text):
+    x0, x1, y0, y1 = (_finite(v) for v in text.split(","))
+    if not (x0 < x1 and y0 < y1):
+        raise ValueError(text)
+    return (x0, x1), (y0, y1)
+
+
+def _cmap(text):
+    try:
+        from matplotlib import colormaps
+        known = text in colormaps
+    except ImportError:                     # matplotlib < 3.5
+        from matplotlib import cm
+        try:
+            cm.get_cmap(text)
+            known = True
+        except ValueError:
+            known = False
+    if not known:
+        raise argparse.ArgumentTypeError(
+            f"expected a matplotlib colour map (viridis, magma, inferno, gray, RdBu_r, ...: "
+            f"the names in matplotlib.colormaps), got {text!r}")
+    return text
+
+
+def _title(text):
+    # a title with paired $ is mathtext; an unknown symbol would fail only when the PNG is drawn
+    from matplotlib import cbook
+    from matplotlib.mathtext import MathTextParser
+    if cbook.is_math_text(text):
+        try:
+            MathTextParser("path").parse(text)
+        except ValueError as exc:
+            why = " ".join(str(exc).split())
+            raise argparse.ArgumentTypeError(
+                f"matplotlib cannot typeset '{text}' ({why}); escape a literal dollar "
+                r"sign as \$") from None
+    return text
+
+
+def _picture(text):
+    """--out: a file name whose suffix is a format matplotlib writes (none: PNG)."""
+    from matplotlib.figure import Figure
+    formats = Figure().canvas.get_supported_filetypes()
+    if os.path.isdir(text):
+        raise argparse.ArgumentTypeError(f"{text!r} is a directory: expected the name of "
+                                         "the picture to write, e.g. rho.png")
+    suffix = os.path.splitext(text)[1][1:].lower()
+    if suffix and suffix not in formats:
+        raise argparse.ArgumentTypeError(
+            f"expected a file name ending in .png or another format matplotlib writes "
+            f"({', '.join(sorted(formats))}), got {text!r}")
+    return text
 
 
 def render(path, out, field="rho", slice_=None, column=None, res=256, vrange=None, log=False,
@@ -360,6 +469,31 @@ def render(path, out, field="rho", slice_=None, column=None, res=256, vrange=Non
     from matplotlib.figure import Figure     # no pyplot: no GUI backend, no global state
 
     p = read_particles(path, mass=mass, hfact=hfact, h_factor=h_factor, frame=frame)
+    # options that do not fit these data: usage errors naming the option (ValueError)
+    available = f"available: {', '.join(p.available())}"
+    if p.dim == 2 and column is not None:
+        raise ValueError(f"--column {column}: {path} holds 2D data, and a column map needs 3D "
+                         "(without --column the map is the plane of the data)")
+    if p.dim == 2 and slice_ is not None:
+        raise ValueError(f"--slice {slice_[0]}={slice_[1]:g}: {path} holds 2D data, and the "
+                         "map is their plane (leave out --slice)")
+    if field not in p.available():
+        need = " (the speed needs the columns vx, vy (, vz))" if field == "v" else ""
+        raise ValueError(f"--field {field!r}: {path} has no such field{need} ({available})")
+    if vectors:
+        if column is not None:
+            plane = [a for a in range(3) if a != AXES[column]]
+        elif p.dim == 3:
+            plane = [a for a in range(3) if a != AXES[slice_[0] if slice_ else "z"]]
+        else:
+            plane = [0, 1]
+        need = [f"v{'xyz'[a]}" for a in plane]
+        if any(c not in p.fields for c in need):
+            raise ValueError(f"--vectors: the arrows need the velocity columns "
+                             f"{', '.join(need)}, which {path} lacks ({available})")
+    if periodic and p.box is None:
+        raise ValueError(f"--periodic: {path} has no box to wrap the particles in (a dump's "
+                         "BOX BOUNDS, an HDF5 snapshot's Header BoxSize)")
     if periodic:
         p = periodic_images(p, None if column is None else
                             [a for a in range(3) if a != AXES[column]])
@@ -408,11 +542,14 @@ def render(path, out, field="rho", slice_=None, column=None, res=256, vrange=Non
     ax.set_xlabel(names[axes[0]])
     ax.set_ylabel(names[axes[1]])
     t = f", t = {p.time:g}" if p.time is not None else ""
-    ax.set_title(title if title is not None else f"{os.path.basename(path)}: {where}{t}",
+    # a file name with two $ would be typeset as mathtext
+    name = os.path.basename(path).replace("$", r"\$")
+    ax.set_title(title if title is not None else f"{name}: {where}{t}",
                  fontsize=9)
     fig.tight_layout()
     os.makedirs(os.path.dirname(os.path.abspath(out)), exist_ok=True)
-    fig.savefig(out, dpi=100)
+    # matplotlib adds ".png" to a name without a suffix; write the file named
+    fig.savefig(out, dpi=100, format=None if os.path.splitext(out)[1] else "png")
     return img, ext, p
 
 
@@ -424,58 +561,60 @@ def add_parser(sub):
                        "integral) map of a LAMMPS text dump (any frame) or a SWIFT-layout "
                        "HDF5 snapshot, with SPH-ASTRO's M4 kernel (Price 2007, PASA 24, 159).")
     r.add_argument("snapshot", help="LAMMPS text dump (columns x y [z] rho h ...) or HDF5")
-    r.add_argument("--out", required=True, help="PNG to write")
+    r.add_argument("--out", required=True, type=_picture,
+                   help="PNG to write (or .pdf, .svg, ...: the formats of matplotlib)")
     r.add_argument("--field", default="rho",
                    help="rho (default), v (speed), h, mass or a dump column (u, pressure, vx...)")
     g = r.add_mutually_exclusive_group()
-    g.add_argument("--slice", default=None, metavar="AXIS=VALUE",
+    g.add_argument("--slice", default=None, metavar="AXIS=VALUE", type=_slice,
                    help="slice plane, e.g. z=0.5 (3D default: the middle of the box in z)")
     g.add_argument("--column", default=None, choices=("x", "y", "z"),
                    help="integrate along this axis instead (3D)")
-    r.add_argument("--res", type=int, default=256, help="pixels across (default 256)")
-    r.add_argument("--range", default=None, metavar="LO,HI",
-                   help="colour range (--range=-1,2 when it starts with a minus sign)")
+    r.add_argument("--res", type=_pixels, default=256,
+                   help=f"pixels across (default 256, at most {MAX_RES})")
+    r.add_argument("--range", default=None, metavar="LO,HI", type=_range,
+                   help="colour range, LO < HI; with --log in log10 of the map "
+                        "(--range=-1,2 when it starts with a minus sign)")
     r.add_argument("--log", action="store_true", help="colour by log10 of the map")
     r.add_argument("--vectors", action="store_true", help="overlay in-plane velocity arrows")
-    r.add_argument("--extent", default=None, metavar="X0,X1,Y0,Y1",
+    r.add_argument("--extent", default=None, metavar="X0,X1,Y0,Y1", type=_window,
                    help="image window in the plane's coordinates (default: the box); write "
                         "--extent=-1,1,-1,1 when it starts with a minus sign")
     r.add_argument("--periodic", action="store_true",
                    help="the box is periodic: include the images of particles near its faces")
     r.add_argument("--normalise", action="store_true",
                    help="slice: divide by sum_j m_j/rho_j W (normalised interpolation)")
-    r.add_argument("--mass", type=float, default=None,
+    r.add_argument("--mass", type=_positive, default=None,
                    help="particle mass for a dump without a mass column (default: "
                         "rho (h/hfact)^d)")
-    r.add_argument("--hfact", type=float, default=1.2,
+    r.add_argument("--hfact", type=_positive, default=1.2,
                    help="h = hfact (m/rho)^(1/d), to infer masses (default 1.2)")
-    r.add_argument("--h-factor", type=float, default=None,
+    r.add_argument("--h-factor", type=_positive, default=None,
                    help="scale the file's smoothing lengths to SPH-ASTRO's h (support 2h); "
                         "HDF5 default: 1 for fix sph/astro/snapshot files, SWIFT's gamma_K/2 = 0.912871 (3D) for others")
     r.add_argument("--frame", type=int, default=-1,
                    help="dump frame by index (0 the first, -1 the last: default)")
-    r.add_argument("--cmap", default="viridis", help="matplotlib colour map")
-    r.add_argument("--title", default=None)
+    r.add_argument("--cmap", default="viridis", type=_cmap, help="matplotlib colour map")
+    r.add_argument("--title", default=None, type=_title,
+                   help="title (default: the file, the plane, the time); $...$ is mathtext")
     r.set_defaults(func=_run)
     return r
 
 
+def _message(exc):
+    """The text of an exception on one line (a KeyError's str() is the repr of its key)."""
+    text = exc.args[0] if isinstance(exc, KeyError) and exc.args else str(exc)
+    return " ".join(str(text).split())
+
+
 def _run(args, parser):
     try:
-        slice_ = _parse_slice(args.slice) if args.slice else None
-        vrange = _parse_pair(args.range, "--range") if args.range else None
-        extent = None
-        if args.extent:
-            v = [float(x) for x in args.extent.split(",")]
-            if len(v) != 4:
-                raise ValueError(f"--extent: expected X0,X1,Y0,Y1, got {args.extent!r}")
-            extent = ((v[0], v[1]), (v[2], v[3]))
-        img, _, p = render(args.snapshot, args.out, args.field, slice_, args.column, args.res,
-                           vrange, args.log, args.vectors, extent, args.mass, args.hfact,
-                           args.h_factor, args.normalise, args.cmap, args.title,
+        img, _, p = render(args.snapshot, args.out, args.field, args.slice, args.column,
+                           args.res, args.range, args.log, args.vectors, args.extent, args.mass,
+                           args.hfact, args.h_factor, args.normalise, args.cmap, args.title,
                            args.periodic, args.frame)
     except (ValueError, KeyError, FileNotFoundError) as exc:
-        parser.error(str(exc).strip("'\""))
+        parser.error(_message(exc))
     print(f"{args.snapshot}: {len(p.pos)} particles{' with periodic images' if args.periodic else ''} ({p.dim}D{'; ' + p.note if p.note else ''}); "
           f"map {img.shape[1]} x {img.shape[0]}, {args.field} from {np.nanmin(img):.4g} to "
           f"{np.nanmax(img):.4g}; wrote {args.out}")

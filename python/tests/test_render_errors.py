@@ -1,0 +1,186 @@
+"""Tests of ``sphastro render`` on bad input: a bad option value is a usage error (exit status
+2) naming the option, the value and what is allowed; a file that cannot be read is a one-line
+error naming it (exit status 1); a picture that would come out blank is written with a warning
+on stderr saying why. Run through the command's entry point, as a user would."""
+
+import contextlib
+import io
+import os
+import tempfile
+import unittest
+
+import numpy as np
+
+from sphastro.__main__ import main as sphastro_main
+
+A = 0.2                                     # lattice spacing
+
+
+def run(*argv):
+    """``sphastro render ARGV``: (exit status, stdout, stderr); an exception other than the
+    SystemExit of an error message (a traceback for the user) fails the test."""
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        try:
+            status = sphastro_main(["render", *argv])
+        except SystemExit as exc:
+            status = exc.code
+    return status, out.getvalue(), err.getvalue()
+
+
+def write_dump(path, pos, rho, h, extra=None, box=(-0.6, 0.6), natoms=None):
+    """A LAMMPS text dump (one frame) with the columns id x y z rho h and ``extra``."""
+    extra = extra or {}
+    n = len(pos)
+    rho, h = np.broadcast_to(rho, (n,)), np.broadcast_to(h, (n,))
+    with open(path, "w") as f:
+        f.write(f"ITEM: TIMESTEP\n10\nITEM: NUMBER OF ATOMS\n{n if natoms is None else natoms}\n")
+        f.write("ITEM: BOX BOUNDS pp pp pp\n" + f"{box[0]} {box[1]}\n" * 3)
+        f.write("ITEM: ATOMS id x y z rho h " + " ".join(extra) + "\n")
+        for i in range(n):
+            vals = [*pos[i], rho[i], h[i]] + [np.broadcast_to(v, (n,))[i] for v in extra.values()]
+            f.write(f"{i + 1} " + " ".join(repr(float(v)) for v in vals) + "\n")
+
+
+def lattice(n=6):
+    """n^3 particles of spacing A centred on the origin (box -0.6 to 0.6)."""
+    g = (np.arange(n) - 0.5 * (n - 1)) * A
+    x, y, z = np.meshgrid(g, g, g, indexing="ij")
+    return np.column_stack([x.ravel(), y.ravel(), z.ravel()])
+
+
+class Case(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+        self.png = self.path("out.png")
+        pos = lattice()
+        self.dump = self.path("dump.lattice")
+        write_dump(self.dump, pos, 1.0, 1.2 * A,
+                   {"vx": -pos[:, 1], "vy": pos[:, 0], "vz": 0.0, "u": 1.5})
+        g = (np.arange(6) - 2.5) * A
+        x, y = np.meshgrid(g, g, indexing="ij")
+        self.dump2d = self.path("dump.2d")
+        write_dump(self.dump2d, np.column_stack([x.ravel(), y.ravel(), 0.0 * x.ravel()]),
+                   1.0, 1.2 * A)
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def path(self, name):
+        return os.path.join(self.dir, name)
+
+    def assertUsageError(self, argv, *words):
+        """Exit status 2 (argparse's) and an error line naming ``words`` (option, value)."""
+        status, _, err = run(*argv)
+        self.assertEqual(status, 2, (argv, err))
+        line = err.strip().splitlines()[-1]
+        self.assertTrue(line.startswith("sphastro render: error:"), (argv, err))
+        for w in words:
+            self.assertIn(w, line, (argv, err))
+        self.assertNotIn("Traceback", err)
+        self.assertFalse(os.path.exists(self.png), argv)
+
+
+class OptionValueTest(Case):
+    """Values wrong whatever the data: checked before the file is read."""
+
+    def test_extent_of_zero_or_negative_width(self):
+        for bad in ("0,0,0,1", "0,1,2,2", "1,0,0,1", "0,1,nan,1", "0,inf,0,1", "a,b,c,d",
+                    "0,1,0"):
+            self.assertUsageError([self.dump, "--out", self.png, f"--extent={bad}"],
+                                  "--extent", bad, "X0 < X1")
+
+    def test_slice_value_not_a_finite_number(self):
+        for bad in ("z=abc", "z=nan", "z=inf", "z=", "w=0.1", "z", "0.5"):
+            self.assertUsageError([self.dump, "--out", self.png, "--slice", bad],
+                                  "--slice", repr(bad), "x, y or z", "finite number")
+
+    def test_res_not_a_sensible_pixel_count(self):
+        for bad in ("0", "-5", "100000", "2.5", "many"):
+            self.assertUsageError([self.dump, "--out", self.png, f"--res={bad}"],
+                                  "--res", repr(bad), "1 to 4096")
+
+    def test_range_empty_reversed_or_not_numbers(self):
+        for bad in ("5,1", "1,1", "nan,1", "0,inf", "a,b", "1", "1,2,3"):
+            self.assertUsageError([self.dump, "--out", self.png, f"--range={bad}"],
+                                  "--range", repr(bad), "LO < HI")
+
+    def test_mass_hfact_and_h_factor_must_be_positive(self):
+        for option in ("--mass", "--hfact", "--h-factor"):
+            for bad in ("0", "-1", "nan", "inf", "x"):
+                self.assertUsageError([self.dump, "--out", self.png, f"{option}={bad}"],
+                                      option, repr(bad), "positive")
+
+    def test_unknown_colour_map(self):
+        self.assertUsageError([self.dump, "--out", self.png, "--cmap", "nope"],
+                              "--cmap", "'nope'", "viridis")
+
+    def test_title_that_matplotlib_cannot_typeset(self):
+        self.assertUsageError([self.dump, "--out", self.png, "--title", r"$\nosuchsymbol$"],
+                              "--title", "nosuchsymbol")
+
+    def test_out_with_an_unknown_format_or_a_directory(self):
+        self.assertUsageError([self.dump, "--out", self.path("rho.xyz")], "--out", "rho.xyz",
+                              "png")
+        self.assertUsageError([self.dump, "--out", self.dir], "--out", self.dir, "directory")
+
+    def test_out_without_a_suffix_is_the_png_named(self):
+        out = self.path("rho")
+        status, stdout, _ = run(self.dump, "--out", out, "--res", "16")
+        self.assertEqual(status, 0)
+        with open(out, "rb") as f:
+            self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+        self.assertFalse(os.path.exists(out + ".png"))
+        self.assertIn(f"wrote {out}", stdout)
+
+
+class OptionForTheDataTest(Case):
+    """Values that the data read decide: still usage errors naming the option."""
+
+    def test_unknown_field_names_the_available_ones(self):
+        self.assertUsageError([self.dump, "--out", self.png, "--field", "temperature"],
+                              "--field", "'temperature'", "available: rho, h, mass, u, vx, vy, "
+                              "vz, v")
+        # a column the reader keeps out of the fields
+        self.assertUsageError([self.dump, "--out", self.png, "--field", "id"],
+                              "--field", "'id'", "available")
+
+    def test_speed_and_vectors_without_velocities(self):
+        self.assertUsageError([self.dump2d, "--out", self.png, "--field", "v"],
+                              "--field", "'v'", "vx, vy")
+        self.assertUsageError([self.dump2d, "--out", self.png, "--vectors"],
+                              "--vectors", "vx, vy", self.dump2d)
+
+    def test_column_and_slice_of_2d_data(self):
+        self.assertUsageError([self.dump2d, "--out", self.png, "--column", "z"],
+                              "--column", "2D", self.dump2d)
+        self.assertUsageError([self.dump2d, "--out", self.png, "--slice", "z=0.1"],
+                              "--slice", "2D", self.dump2d)
+
+    def test_frame_that_does_not_exist(self):
+        self.assertUsageError([self.dump, "--out", self.png, "--frame", "3"],
+                              "--frame 3", self.dump, "1 frame", "-1 to 0")
+
+    def test_frame_and_periodic_of_an_hdf5_snapshot(self):
+        try:
+            import h5py
+        except ImportError:
+            self.skipTest("h5py not installed")
+        snap = self.path("snap.hdf5")
+        pos = lattice()
+        with h5py.File(snap, "w") as f:
+            g = f.create_group("PartType0")
+            g["Coordinates"] = pos
+            g["Masses"] = np.full(len(pos), A ** 3)
+            g["Density"] = np.ones(len(pos))
+            g["SmoothingLengths"] = np.full(len(pos), 1.2 * A)
+        self.assertUsageError([snap, "--out", self.png, "--frame", "2"],
+                              "--frame 2", snap, "0 or -1")
+        # no Header/BoxSize: no box to wrap
+        self.assertUsageError([snap, "--out", self.png, "--periodic"], "--periodic", snap,
+                              "BoxSize")
+
+
+if __name__ == "__main__":
+    unittest.main()
