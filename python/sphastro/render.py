@@ -22,10 +22,12 @@ Velocities, InternalEnergies; read with h5py).
 import argparse
 import math
 import os
+import warnings
+import zlib
 
 import numpy as np
 
-__all__ = ["SIGMA", "kernel_w", "kernel_column", "Particles", "read_particles",
+__all__ = ["SIGMA", "kernel_w", "kernel_column", "Particles", "FileError", "read_particles",
            "periodic_images", "slice_map",
            "column_map", "render", "add_parser"]
 
@@ -128,9 +130,47 @@ def periodic_images(p, axes=None):
     return Particles(pos, p.mass[idx], p.rho[idx], p.h[idx], fields, p.box, p.time, p.note)
 
 
+class FileError(ValueError):
+    """A dump or snapshot that cannot be read, or a picture that cannot be written; the
+    message starts with the file's name (``sphastro render``: one line, exit status 1)."""
+
+
 def _is_hdf5(path):
     with open(path, "rb") as f:
         return f.read(8) == b"\x89HDF\r\n\x1a\n"
+
+
+def _one_line(exc):
+    """An exception's text on one line (h5py's and matplotlib's may run over several)."""
+    text = exc.args[0] if isinstance(exc, KeyError) and exc.args else str(exc)
+    return " ".join(str(text).split())
+
+
+def _check_particles(path, pos, mass, rho, h, ids=None):
+    """Refuse particles the kernel sums cannot hold: a position that is not finite, h or rho
+    not positive and finite, a negative or non-finite mass. A NaN would blank every pixel it
+    reaches and an h <= 0 divide by zero, neither with a word of why."""
+    n = len(pos)
+    if n == 0:
+        raise FileError(f"{path}: no particles in the file (or the frame): nothing to "
+                        "render")
+    values = {"xyz"[a]: pos[:, a] for a in range(pos.shape[1])}
+    values.update(h=h, rho=rho, mass=mass)
+    with np.errstate(invalid="ignore"):
+        good = {name: np.isfinite(v) for name, v in values.items()}
+        for name in ("h", "rho"):
+            good[name] &= values[name] > 0.0
+        good["mass"] &= mass >= 0.0
+    for name, ok in good.items():
+        bad = np.flatnonzero(~ok)
+        if len(bad):
+            k = bad[0]
+            who = f"id {ids[k]}" if ids is not None else f"particle {k} of the file"
+            what = {"h": "not a positive finite number", "rho": "not a positive finite number",
+                    "mass": "negative or not finite"}.get(name, "not finite")
+            raise FileError(f"{path}: {len(bad)} of {n} particles have {name} {what} "
+                            f"(first: {who}, {name} = {values[name][k]:g}); the map cannot "
+                            "hold them")
 
 
 def _read_hdf5(path, h_factor=None, frame=-1):
@@ -140,69 +180,135 @@ def _read_hdf5(path, h_factor=None, frame=-1):
     try:
         import h5py
     except ImportError:
-        raise SystemExit(f"error: {path} is HDF5: reading it needs h5py (Debian: python3-h5py)")
-    with h5py.File(path, "r") as f:
-        if "PartType0" not in f:
-            raise ValueError(f"{path}: no PartType0 group (SWIFT snapshot layout expected)")
-        g = f["PartType0"]
-        need = ("Coordinates", "Masses", "Density", "SmoothingLengths")
-        missing = [k for k in need if k not in g]
-        if missing:
-            raise ValueError(f"{path}: PartType0 lacks {', '.join(missing)}")
-        header = f["Header"].attrs if "Header" in f else {}
-        dim = int(np.ravel(header.get("Dimension", [3]))[0])
-        pos = np.asarray(g["Coordinates"])[:, :dim]
-        box = None
-        if "BoxSize" in header:
-            size = np.ravel(np.asarray(header["BoxSize"], dtype=float))
-            size = np.resize(size, dim)
-            box = np.column_stack([np.zeros(dim), size])
-        time = float(np.ravel(header["Time"])[0]) if "Time" in header else None
-        if h_factor is None:
-            # fix sph/astro/snapshot (Code group "SPH-ASTRO ...") stores the run's own h
-            code = f["Code"].attrs.get("Code", b"") if "Code" in f else b""
-            code = code.decode() if isinstance(code, bytes) else str(code)
-            h_factor = 1.0 if code.startswith("SPH-ASTRO") else \
-                SWIFT_KERNEL_GAMMA.get(dim, 1.825742) / 2.0
-        fields = {}
-        if "Velocities" in g:
-            vel = np.asarray(g["Velocities"])
-            for k, c in enumerate(("vx", "vy", "vz")[:dim]):
-                fields[c] = vel[:, k]
-        for name, key in (("u", "InternalEnergies"), ("pressure", "Pressures")):
-            if key in g:
-                fields[name] = np.asarray(g[key])
-        return Particles(pos, np.asarray(g["Masses"]), np.asarray(g["Density"]),
-                         h_factor * np.asarray(g["SmoothingLengths"]), fields, box, time,
-                         note=f"h = {h_factor:.6g} x SmoothingLengths")
+        raise FileError(f"{path} is HDF5: reading it needs h5py (Debian: python3-h5py)") \
+            from None
+    try:
+        f = h5py.File(path, "r")
+    except OSError as exc:
+        # a truncated file: "Unable to open file (truncated file: eof = ..., stored_eof = ...)"
+        raise FileError(f"{path}: not a readable HDF5 file ({_one_line(exc)})") from None
+    try:
+        with f:
+            return _read_hdf5_file(path, f, h_factor)
+    except FileError:
+        raise
+    except (OSError, ValueError, KeyError, IndexError, TypeError) as exc:
+        # h5py's and numpy's own complaints about a damaged or unexpected file
+        raise FileError(f"{path}: cannot read the snapshot ({_one_line(exc)})") from None
+
+
+def _read_hdf5_file(path, f, h_factor):
+    if "PartType0" not in f:
+        raise FileError(f"{path}: no PartType0 group (SWIFT snapshot layout expected)")
+    g = f["PartType0"]
+    need = ("Coordinates", "Masses", "Density", "SmoothingLengths")
+    missing = [k for k in need if k not in g]
+    if missing:
+        raise FileError(f"{path}: PartType0 lacks {', '.join(missing)}")
+    header = f["Header"].attrs if "Header" in f else {}
+    dim = int(np.ravel(header.get("Dimension", [3]))[0])
+    if dim not in (2, 3):
+        raise FileError(f"{path}: Header Dimension {dim}: render maps 2D and 3D data")
+    coords = np.asarray(g["Coordinates"], dtype=float)
+    if coords.ndim != 2 or coords.shape[1] < dim:
+        raise FileError(f"{path}: PartType0/Coordinates has the shape {coords.shape}, "
+                        f"expected (N, {'2) or (N, 3' if dim == 2 else '3'})")
+    n = len(coords)
+    data = {}
+    for key in ("Masses", "Density", "SmoothingLengths", "InternalEnergies", "Pressures",
+                "ParticleIDs", "Velocities"):
+        if key in g:
+            data[key] = np.asarray(g[key])
+            shape = data[key].shape
+            if key == "Velocities":
+                ok, want = len(shape) == 2 and shape[0] == n and shape[1] >= dim, f"({n}, {dim})"
+            else:
+                ok, want = shape == (n,), f"({n},)"
+            if not ok:
+                raise FileError(f"{path}: PartType0/{key} has the shape {shape} for {n} "
+                                f"particles, expected {want}")
+    pos = coords[:, :dim]
+    box = None
+    if "BoxSize" in header:
+        size = np.ravel(np.asarray(header["BoxSize"], dtype=float))
+        size = np.resize(size, dim)
+        box = np.column_stack([np.zeros(dim), size])
+    time = float(np.ravel(header["Time"])[0]) if "Time" in header else None
+    if h_factor is None:
+        # fix sph/astro/snapshot (Code group "SPH-ASTRO ...") stores the run's own h
+        code = f["Code"].attrs.get("Code", b"") if "Code" in f else b""
+        code = code.decode() if isinstance(code, bytes) else str(code)
+        h_factor = 1.0 if code.startswith("SPH-ASTRO") else \
+            SWIFT_KERNEL_GAMMA.get(dim, 1.825742) / 2.0
+    fields = {}
+    if "Velocities" in data:
+        for k, c in enumerate(("vx", "vy", "vz")[:dim]):
+            fields[c] = data["Velocities"][:, k].astype(float)
+    for name, key in (("u", "InternalEnergies"), ("pressure", "Pressures")):
+        if key in data:
+            fields[name] = data[key].astype(float)
+    mass, rho = data["Masses"].astype(float), data["Density"].astype(float)
+    h = h_factor * data["SmoothingLengths"].astype(float)
+    _check_particles(path, pos, mass, rho, h, data.get("ParticleIDs"))
+    return Particles(pos, mass, rho, h, fields, box, time,
+                     note=f"h = {h_factor:.6g} x SmoothingLengths")
+
+
+def _dump_frame(path, frame):
+    """The frame of the dump ``path`` (index ``frame``); dump.py's ValueErrors on text that is
+    no dump, and its warnings on a truncated last frame, become a :class:`FileError` naming
+    the file when no frame is left."""
+    from .dump import read_frames, read_last_frame
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            frames = [read_last_frame(path)] if frame == -1 else list(read_frames(path))
+        except (ValueError, EOFError, OSError, zlib.error) as exc:
+            if "no complete frame" not in str(exc):
+                raise FileError(f"{path}: not a readable LAMMPS text dump "
+                                f"({_one_line(exc)})") from None
+            frames = []
+    # dump.py's words for a frame cut short ("skipping incomplete last frame", "last frame
+    # incomplete") and for a file without one ("no complete frame")
+    truncated = [w for w in caught if "incomplete" in str(w.message)]
+    if not frames and truncated:
+        raise FileError(f"{path}: the file ends inside its first frame (a truncated dump, or "
+                        "one still being written): no complete frame")
+    if not frames:
+        raise FileError(f"{path}: not a LAMMPS text dump (no 'ITEM: TIMESTEP' frame) nor an "
+                        "HDF5 snapshot")
+    for w in caught:                        # e.g. the last frame incomplete, an earlier one used
+        warnings.warn(w.message)
+    if frame == -1:
+        return frames[0]
+    n = len(frames)
+    if not -n <= frame < n:
+        raise ValueError(f"--frame {frame}: {path} has {n} frame{'s' if n != 1 else ''} "
+                         f"(allowed: {-n} to {n - 1})")
+    return frames[frame]
 
 
 def _read_dump(path, mass=None, hfact=1.2, h_factor=None, frame=-1):
-    from .dump import read_frames, read_last_frame
-
-    if frame == -1:
-        frame = read_last_frame(path)
-    else:
-        frames = list(read_frames(path))
-        n = len(frames)
-        if not -n <= frame < n:
-            raise ValueError(f"--frame {frame}: {path} has {n} frame{'s' if n != 1 else ''} "
-                             f"(allowed: {-n} to {n - 1})")
-        frame = frames[frame]
+    frame = _dump_frame(path, frame)
     c = frame.columns
     axes = [a for a in ("x", "y", "z") if a in c]
     if axes[:2] != ["x", "y"]:
-        raise ValueError(f"{path}: the dump needs the columns x, y (and z in 3D)")
-    # a 2d LAMMPS run keeps every z at 0 (dump columns x y z of a 2d run: 2D)
-    if "z" in axes and not np.any(np.asarray(c["z"], dtype=float)):
-        axes = ["x", "y"]
-    dim = len(axes)
+        raise FileError(f"{path}: the dump needs the columns x, y (and z in 3D)")
     alias = {"c_sph[1]": "rho", "c_sph[2]": "pressure", "c_sph[3]": "u", "c_sph[4]": "h"}
     cols = {alias.get(k, k): v for k, v in c.items()}
     for k in ("rho", "h"):
         if k not in cols:
-            raise ValueError(f"{path}: the dump needs a '{k}' column (e.g. compute "
-                             "sph/astro/atom rho pressure u h, dump_modify colname ...)")
+            raise FileError(f"{path}: the dump needs a '{k}' column (e.g. compute "
+                            "sph/astro/atom rho pressure u h, dump_modify colname ...)")
+    for k in axes + ["rho", "h"] + (["mass"] if "mass" in cols else []):
+        # dump.py keeps a column with a word in it as text
+        if np.asarray(cols[k]).dtype.kind not in "fi":
+            raise FileError(f"{path}: column {k} is not numeric (e.g. {cols[k][0]!r})")
+    # a 2d LAMMPS run keeps every z at 0 (dump columns x y z of a 2d run: 2D)
+    if "z" in axes and len(c["z"]) and not np.any(np.asarray(c["z"], dtype=float)):
+        axes = ["x", "y"]
+    dim = len(axes)
     h = cols["h"] * (h_factor or 1.0)
     note = ""
     if "mass" in cols:
@@ -213,12 +319,17 @@ def _read_dump(path, mass=None, hfact=1.2, h_factor=None, frame=-1):
     else:
         # the smoothing-length constraint h = hfact (m / rho)^(1/d) (Price 2012, JCP 231, 759,
         # eq. 10), exact for variable-h runs (fix sph/astro/h iterate)
-        m = cols["rho"] * (cols["h"] / hfact) ** dim
+        with np.errstate(all="ignore"):     # non-finite rho, h: refused below
+            m = cols["rho"] * (cols["h"] / hfact) ** dim
         note = f"mass from rho (h/hfact)^d, hfact {hfact:g}"
     skip = set(axes) | {"rho", "h", "mass", "id", "type"}
     fields = {k: np.asarray(v, dtype=float) for k, v in cols.items()
               if k not in skip and np.asarray(v).dtype.kind in "fi"}
-    pos = np.column_stack([cols[a] for a in axes])
+    pos = np.column_stack([cols[a] for a in axes]).astype(float)
+    n = len(pos)
+    _check_particles(path, pos, np.broadcast_to(np.asarray(m, dtype=float), (n,)),
+                     np.asarray(cols["rho"], dtype=float), np.asarray(h, dtype=float),
+                     cols.get("id"))
     return Particles(pos, m, cols["rho"], h, fields, frame.box[:dim], frame.time, note)
 
 
@@ -228,10 +339,26 @@ def read_particles(path, mass=None, hfact=1.2, h_factor=None, frame=-1):
 
     Dumps: ``mass`` (a number) when the dump has no mass column, else m = rho (h/hfact)^d;
     HDF5: ``h_factor`` scales SmoothingLengths to SPH-ASTRO's h (default: 1 for files of fix
-    sph/astro/snapshot, SWIFT's gamma_K / 2 for others)."""
+    sph/astro/snapshot, SWIFT's gamma_K / 2 for others).
+
+    A file that cannot be read (missing, empty, truncated, not a dump, particles with
+    non-finite or non-positive h, rho) raises :class:`FileError`, a ``frame`` it lacks a
+    ValueError."""
+    for name, value in (("--mass", mass), ("--hfact", hfact), ("--h-factor", h_factor)):
+        if value is not None and not (math.isfinite(value) and value > 0.0):
+            raise ValueError(f"{name} {value!r}: expected a positive finite number")
     if not os.path.exists(path):
-        raise FileNotFoundError(f"{path}: no such file")
-    if _is_hdf5(path):
+        raise FileError(f"{path}: no such file")
+    if os.path.isdir(path):
+        raise FileError(f"{path}: a directory, not a dump or a snapshot")
+    try:
+        if os.path.getsize(path) == 0:
+            raise FileError(f"{path}: empty file (expected a LAMMPS text dump or an HDF5 "
+                            "snapshot)")
+        hdf5 = _is_hdf5(path)
+    except OSError as exc:
+        raise FileError(f"{path}: cannot read it ({exc.strerror or _one_line(exc)})") from None
+    if hdf5:
         return _read_hdf5(path, h_factor, frame)
     return _read_dump(path, mass, hfact, h_factor, frame)
 
@@ -547,9 +674,13 @@ def render(path, out, field="rho", slice_=None, column=None, res=256, vrange=Non
     ax.set_title(title if title is not None else f"{name}: {where}{t}",
                  fontsize=9)
     fig.tight_layout()
-    os.makedirs(os.path.dirname(os.path.abspath(out)), exist_ok=True)
-    # matplotlib adds ".png" to a name without a suffix; write the file named
-    fig.savefig(out, dpi=100, format=None if os.path.splitext(out)[1] else "png")
+    try:
+        os.makedirs(os.path.dirname(os.path.abspath(out)), exist_ok=True)
+        # matplotlib adds ".png" to a name without a suffix; write the file named
+        fig.savefig(out, dpi=100, format=None if os.path.splitext(out)[1] else "png")
+    except OSError as exc:
+        raise FileError(f"--out {out}: cannot write it ({exc.strerror or _one_line(exc)})") \
+            from None
     return img, ext, p
 
 
@@ -601,20 +732,17 @@ def add_parser(sub):
     return r
 
 
-def _message(exc):
-    """The text of an exception on one line (a KeyError's str() is the repr of its key)."""
-    text = exc.args[0] if isinstance(exc, KeyError) and exc.args else str(exc)
-    return " ".join(str(text).split())
-
-
 def _run(args, parser):
     try:
         img, _, p = render(args.snapshot, args.out, args.field, args.slice, args.column,
                            args.res, args.range, args.log, args.vectors, args.extent, args.mass,
                            args.hfact, args.h_factor, args.normalise, args.cmap, args.title,
                            args.periodic, args.frame)
-    except (ValueError, KeyError, FileNotFoundError) as exc:
-        parser.error(_message(exc))
+    except FileError as exc:
+        # the command line was fine, the file is not: no usage text, exit status 1
+        parser.exit(1, f"{parser.prog}: error: {_one_line(exc)}\n")
+    except (ValueError, KeyError) as exc:
+        parser.error(_one_line(exc))
     print(f"{args.snapshot}: {len(p.pos)} particles{' with periodic images' if args.periodic else ''} ({p.dim}D{'; ' + p.note if p.note else ''}); "
           f"map {img.shape[1]} x {img.shape[0]}, {args.field} from {np.nanmin(img):.4g} to "
           f"{np.nanmax(img):.4g}; wrote {args.out}")

@@ -182,5 +182,129 @@ class OptionForTheDataTest(Case):
                               "BoxSize")
 
 
+def write_snapshot(path, pos, **replace):
+    """A SWIFT-layout HDF5 snapshot of particles at ``pos``; ``replace``: datasets of
+    PartType0 (name -> array) to write instead, or None to leave out."""
+    import h5py
+
+    n = len(pos)
+    data = {"Coordinates": pos + 0.6, "Masses": np.full(n, A ** 3), "Density": np.ones(n),
+            "SmoothingLengths": np.full(n, 1.2 * A), "Velocities": np.zeros((n, 3))}
+    data.update(replace)
+    with h5py.File(path, "w") as f:
+        f.create_group("Header").attrs.update({"BoxSize": [1.2] * 3, "Time": 0.5,
+                                               "Dimension": 3})
+        g = f.create_group("PartType0")
+        for k, v in data.items():
+            if v is not None:
+                g[k] = v
+
+
+class FileErrorTest(Case):
+    """Files that cannot be read: one line naming the file and why, exit status 1."""
+
+    def assertFileError(self, path, *words, argv=()):
+        status, _, err = run(path, "--out", self.png, *argv)
+        self.assertEqual(status, 1, (path, err))
+        self.assertEqual(len(err.strip().splitlines()), 1, err)
+        self.assertTrue(err.startswith(f"sphastro render: error: {path}"), err)
+        for w in words:
+            self.assertIn(w, err)
+        self.assertFalse(os.path.exists(self.png), path)
+
+    def test_missing_file_and_directory(self):
+        self.assertFileError(self.path("nothing.here"), "no such file")
+        self.assertFileError(self.dir, "directory")
+
+    def test_empty_file(self):
+        empty = self.path("empty")
+        open(empty, "w").close()
+        self.assertFileError(empty, "empty", "LAMMPS text dump", "HDF5")
+
+    def test_text_and_binary_files_that_are_no_dumps(self):
+        text = self.path("notes.txt")
+        with open(text, "w") as f:
+            f.write("a text file\nnot a dump\n")
+        self.assertFileError(text, "not a LAMMPS text dump", "ITEM: TIMESTEP")
+        self.assertFileError(text, "LAMMPS text dump", "a text file", argv=("--frame", "0"))
+        binary = self.path("noise.bin")
+        with open(binary, "wb") as f:
+            f.write(bytes(range(256)) * 8)
+        self.assertFileError(binary, "not a LAMMPS text dump")
+
+    def test_truncated_dump(self):
+        with open(self.dump) as f:
+            text = f.read()
+        half = self.path("dump.half")
+        with open(half, "w") as f:
+            f.write(text[:len(text) // 2])
+        self.assertFileError(half, "ends inside its first frame")
+        self.assertFileError(half, "ends inside its first frame", argv=("--frame", "0"))
+
+    def test_dump_with_malformed_rows_or_columns(self):
+        with open(self.dump) as f:
+            lines = f.read().splitlines(keepends=True)
+        short = self.path("dump.short")
+        with open(short, "w") as f:
+            f.write("".join(lines[:9]) + " ".join(lines[9].split()[:-1]) + "\n" +
+                    "".join(lines[10:]))
+        self.assertFileError(short, "not a readable LAMMPS text dump", "values")
+        words = self.path("dump.words")
+        with open(words, "w") as f:
+            row = lines[9].split()
+            row[2] = "abc"                                  # the y of the first particle
+            f.write("".join(lines[:9]) + " ".join(row) + "\n" + "".join(lines[10:]))
+        self.assertFileError(words, "column y", "not numeric")
+
+    def test_dump_without_particles(self):
+        empty = self.path("dump.none")
+        write_dump(empty, np.zeros((0, 3)), 1.0, 0.1)
+        self.assertFileError(empty, "no particles")
+
+    def test_particles_with_values_that_cannot_be_rendered(self):
+        pos = lattice(3)
+        for name, (column, value) in {"nan_h": ("h", np.nan), "zero_h": ("h", 0.0),
+                                      "negative_rho": ("rho", -1.0),
+                                      "inf_x": ("x", np.inf)}.items():
+            dump = self.path(f"dump.{name}")
+            rho, h, p = np.ones(len(pos)), np.full(len(pos), 1.2 * A), pos.copy()
+            {"h": h, "rho": rho, "x": p[:, 0]}[column][4] = value
+            write_dump(dump, p, rho, h)
+            self.assertFileError(dump, "1 of 27 particles", column, "id 5")
+
+    def test_truncated_and_malformed_hdf5(self):
+        try:
+            import h5py                                     # noqa: F401
+        except ImportError:
+            self.skipTest("h5py not installed")
+        pos = lattice()
+        snap = self.path("snap.hdf5")
+        write_snapshot(snap, pos)
+        with open(snap, "rb") as f:
+            data = f.read()
+        half = self.path("snap.half.hdf5")
+        with open(half, "wb") as f:
+            f.write(data[:len(data) // 2])
+        self.assertFileError(half, "not a readable HDF5 file", "truncated")
+        bad = self.path("snap.shape.hdf5")
+        write_snapshot(bad, pos, Masses=np.ones(len(pos) - 1))
+        self.assertFileError(bad, "PartType0/Masses", f"{len(pos) - 1}", f"{len(pos)}")
+        flat = self.path("snap.flat.hdf5")
+        write_snapshot(flat, pos, Coordinates=pos[:, 0])
+        self.assertFileError(flat, "PartType0/Coordinates")
+        none = self.path("snap.none.hdf5")
+        write_snapshot(none, np.zeros((0, 3)))
+        self.assertFileError(none, "no particles")
+
+    def test_picture_that_cannot_be_written(self):
+        blocker = self.path("a_file")
+        open(blocker, "w").close()
+        out = os.path.join(blocker, "rho.png")
+        status, _, err = run(self.dump, "--out", out, "--res", "16")
+        self.assertEqual(status, 1, err)
+        self.assertEqual(len(err.strip().splitlines()), 1, err)
+        self.assertIn(f"--out {out}: cannot write", err)
+
+
 if __name__ == "__main__":
     unittest.main()
