@@ -22,12 +22,14 @@ Velocities, InternalEnergies; read with h5py).
 import argparse
 import math
 import os
+import sys
 import warnings
 import zlib
 
 import numpy as np
 
-__all__ = ["SIGMA", "kernel_w", "kernel_column", "Particles", "FileError", "read_particles",
+__all__ = ["SIGMA", "kernel_w", "kernel_column", "Particles", "FileError", "RenderWarning",
+           "read_particles",
            "periodic_images", "slice_map",
            "column_map", "render", "add_parser"]
 
@@ -585,6 +587,55 @@ def _picture(text):
     return text
 
 
+class RenderWarning(UserWarning):
+    """A picture that comes out blank or of one colour; the message says why."""
+
+
+def _why_blank(p, img, data, ext, plane, field, log, vrange, slice_=None):
+    """Why the picture of ``data`` (``img``, or its log10) is blank or of one colour, or None:
+    no particle's kernel reaches the slice plane (``slice_`` = (axis, value)) or the window
+    ``ext``, no positive pixel for --log, no finite pixel, one value everywhere, the whole map
+    outside --range."""
+    near = np.ones(len(p.pos), dtype=bool)
+    if slice_ is not None:
+        axis, at = slice_
+        k = AXES[axis]
+        near = np.abs(p.pos[:, k] - at) < 2.0 * p.h
+        if not near.any():
+            lo, hi = np.min(p.pos[:, k] - 2.0 * p.h), np.max(p.pos[:, k] + 2.0 * p.h)
+            return (f"slice {axis} = {at:g}: no particle's kernel reaches the plane (they span "
+                    f"{axis} = {lo:.4g} to {hi:.4g}): the map is empty and the picture blank "
+                    "(choose the plane with --slice)")
+    reach = near.copy()
+    for a, (lo, hi) in zip(plane, ext):
+        reach &= (p.pos[:, a] - 2.0 * p.h < hi) & (p.pos[:, a] + 2.0 * p.h > lo)
+    if not reach.any():
+        window = ", ".join(f"{'xyz'[a]} = {lo:g} to {hi:g}" for a, (lo, hi) in zip(plane, ext))
+        span = ", ".join(f"{'xyz'[a]} = {np.min(p.pos[near, a] - 2.0 * p.h[near]):.4g} to "
+                         f"{np.max(p.pos[near, a] + 2.0 * p.h[near]):.4g}" for a in plane)
+        return (f"the window {window}: no particle's kernel"
+                f"{' in the slice' if slice_ is not None else ''} reaches it (they span "
+                f"{span}): the map is empty and the picture blank (choose the window with "
+                "--extent)")
+    finite = data[np.isfinite(data)]
+    if log and finite.size == 0:
+        values = img[np.isfinite(img)]
+        span = f" ({field} from {values.min():.4g} to {values.max():.4g})" if values.size else ""
+        return (f"--log: no pixel of the map is positive{span}: the picture is blank "
+                "(leave out --log)")
+    if finite.size == 0:
+        return f"no pixel of the map of {field} is finite: the picture is blank"
+    lo, hi = finite.min(), finite.max()
+    if lo == hi:
+        return (f"the map of {field} is {lo:.4g}{' in log10' if log else ''} wherever "
+                "particles reach: the picture has one colour")
+    if vrange is not None and (hi < vrange[0] or lo > vrange[1]):
+        return (f"--range {vrange[0]:g},{vrange[1]:g}: the map runs from {lo:.4g} to "
+                f"{hi:.4g}{' in log10' if log else ''}, wholly outside the range: the picture "
+                "has one colour")
+    return None
+
+
 def render(path, out, field="rho", slice_=None, column=None, res=256, vrange=None, log=False,
            vectors=False, extent=None, mass=None, hfact=1.2, h_factor=None, normalise=False,
            cmap="viridis", title=None, periodic=False, frame=-1):
@@ -592,7 +643,12 @@ def render(path, out, field="rho", slice_=None, column=None, res=256, vrange=Non
     z = the middle of the box) or a column map (``column`` = axis) of ``field`` and write the
     PNG ``out`` (matplotlib). ``vectors``: in-plane velocity arrows (from vx, vy, vz).
     ``periodic``: add the periodic images of the particles near the box faces.
-    Returns (image, extent, particles)."""
+    Returns (image, extent, particles).
+
+    Options the data do not fit (an unknown ``field``, ``column`` of 2D data, ...) raise a
+    ValueError naming the option, a file that cannot be read or written a :class:`FileError`.
+    A picture that comes out blank or of one colour is written all the same (a series of
+    frames stays complete), with a :class:`RenderWarning` saying why."""
     from matplotlib.figure import Figure     # no pyplot: no GUI backend, no global state
 
     p = read_particles(path, mass=mass, hfact=hfact, h_factor=h_factor, frame=frame)
@@ -621,6 +677,10 @@ def render(path, out, field="rho", slice_=None, column=None, res=256, vrange=Non
     if periodic and p.box is None:
         raise ValueError(f"--periodic: {path} has no box to wrap the particles in (a dump's "
                          "BOX BOUNDS, an HDF5 snapshot's Header BoxSize)")
+    bad = np.count_nonzero(~np.isfinite(p.field(field)))
+    if bad:
+        warnings.warn(f"--field {field}: {bad} of {len(p.pos)} particles have a value that is "
+                      "not finite: the pixels they reach are blank", RenderWarning, stacklevel=2)
     if periodic:
         p = periodic_images(p, None if column is None else
                             [a for a in range(3) if a != AXES[column]])
@@ -644,7 +704,13 @@ def render(path, out, field="rho", slice_=None, column=None, res=256, vrange=Non
     fig = Figure(figsize=(4.6, 3.8))
     ax = fig.subplots()
     data = np.log10(np.where(img > 0.0, img, np.nan)) if log else img
-    vmin, vmax = vrange if vrange is not None else (np.nanmin(data), np.nanmax(data))
+    why = _why_blank(p, img, data, ext, axes, field, log, vrange,
+                     None if column is not None or p.dim == 2 else (axis, at))
+    if why:
+        warnings.warn(why, RenderWarning, stacklevel=2)
+    finite = data[np.isfinite(data)]
+    vmin, vmax = vrange if vrange is not None else \
+        (finite.min(), finite.max()) if finite.size else (None, None)
     im = ax.imshow(data, origin="lower", extent=[*ext[0], *ext[1]], cmap=cmap, vmin=vmin,
                    vmax=vmax, interpolation="nearest")
     fig.colorbar(im, ax=ax, label=("log10 " if log else "") + label)
@@ -733,17 +799,27 @@ def add_parser(sub):
 
 
 def _run(args, parser):
-    try:
-        img, _, p = render(args.snapshot, args.out, args.field, args.slice, args.column,
-                           args.res, args.range, args.log, args.vectors, args.extent, args.mass,
-                           args.hfact, args.h_factor, args.normalise, args.cmap, args.title,
-                           args.periodic, args.frame)
-    except FileError as exc:
+    failure = None
+    # warnings (a blank picture and why, dump.py's incomplete last frame) as one line each,
+    # without the source line Python's warnings module would print under them
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            img, _, p = render(args.snapshot, args.out, args.field, args.slice, args.column,
+                               args.res, args.range, args.log, args.vectors, args.extent,
+                               args.mass, args.hfact, args.h_factor, args.normalise,
+                               args.cmap, args.title, args.periodic, args.frame)
+        except (ValueError, KeyError) as exc:
+            failure = exc
+    for text in dict.fromkeys(_one_line(w.message) for w in caught):
+        print(f"{parser.prog}: warning: {text}", file=sys.stderr)
+    if isinstance(failure, FileError):
         # the command line was fine, the file is not: no usage text, exit status 1
-        parser.exit(1, f"{parser.prog}: error: {_one_line(exc)}\n")
-    except (ValueError, KeyError) as exc:
-        parser.error(_one_line(exc))
+        parser.exit(1, f"{parser.prog}: error: {_one_line(failure)}\n")
+    if failure is not None:
+        parser.error(_one_line(failure))
+    finite = img[np.isfinite(img)]
+    span = f"from {finite.min():.4g} to {finite.max():.4g}" if finite.size else "no finite pixel"
     print(f"{args.snapshot}: {len(p.pos)} particles{' with periodic images' if args.periodic else ''} ({p.dim}D{'; ' + p.note if p.note else ''}); "
-          f"map {img.shape[1]} x {img.shape[0]}, {args.field} from {np.nanmin(img):.4g} to "
-          f"{np.nanmax(img):.4g}; wrote {args.out}")
+          f"map {img.shape[1]} x {img.shape[0]}, {args.field} {span}; wrote {args.out}")
     return 0

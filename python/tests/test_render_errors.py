@@ -306,5 +306,69 @@ class FileErrorTest(Case):
         self.assertIn(f"--out {out}: cannot write", err)
 
 
+class BlankPictureTest(Case):
+    """A picture that comes out blank or of one colour is written (exit status 0: a series of
+    frames stays complete), with a warning on stderr that says why."""
+
+    def assertWarned(self, argv, *words):
+        status, _, err = run(*argv, "--out", self.png, "--res", "16")
+        self.assertEqual(status, 0, (argv, err))
+        self.assertGreater(os.path.getsize(self.png), 1000)
+        lines = err.strip().splitlines()
+        self.assertEqual(len(lines), 1, (argv, err))
+        self.assertTrue(lines[0].startswith("sphastro render: warning:"), (argv, err))
+        for w in words:
+            self.assertIn(w, lines[0], (argv, err))
+        os.remove(self.png)
+
+    def test_slice_outside_the_particles(self):
+        self.assertWarned([self.dump, "--slice", "z=50"], "slice z = 50", "no particle",
+                          "blank", "--slice")
+        self.assertWarned([self.dump, "--slice", "x=-3", "--normalise"], "slice x = -3",
+                          "blank")
+
+    def test_window_away_from_the_particles(self):
+        self.assertWarned([self.dump, "--extent=5,6,5,6"], "window", "no particle", "blank",
+                          "--extent")
+        self.assertWarned([self.dump, "--column", "x", "--extent=5,6,5,6"], "window",
+                          "blank")
+
+    def test_log_of_a_map_without_a_positive_pixel(self):
+        self.assertWarned([self.dump, "--field", "vz", "--log"], "--log", "no pixel",
+                          "positive", "blank")
+        self.assertWarned([self.dump, "--field", "vz", "--log", "--column", "z"], "--log",
+                          "blank")
+
+    def test_uniform_map_and_range_outside_the_map(self):
+        self.assertWarned([self.dump, "--field", "vz"], "vz is 0", "one colour")
+        self.assertWarned([self.dump, "--range", "10,20"], "--range 10,20", "outside",
+                          "one colour")
+        self.assertWarned([self.dump, "--log", "--range=-9,-8"], "--range -9,-8", "log10",
+                          "outside")
+
+    def test_field_with_values_that_are_not_finite(self):
+        pos = lattice()
+        u = np.full(len(pos), 1.5)
+        u[7] = np.nan
+        dump = self.path("dump.nan_u")
+        write_dump(dump, pos, 1.0, 1.2 * A, {"u": u})
+        self.assertWarned([dump, "--field", "u", "--slice", f"z={pos[7, 2]}"], "--field u",
+                          "1 of 216", "not finite", "blank")
+
+    def test_incomplete_last_frame_is_a_one_line_warning(self):
+        with open(self.dump) as f:
+            text = f.read()
+        dump = self.path("dump.growing")
+        with open(dump, "w") as f:
+            f.write(text + text[:len(text) // 2])
+        self.assertWarned([dump], dump, "last frame incomplete", "previous one")
+
+    def test_a_good_picture_has_no_warning(self):
+        # pixels beyond the particles are blank in --log, the rest of the picture is not
+        status, _, err = run(self.dump, "--out", self.png, "--res", "16", "--log",
+                             "--extent=-2,2,-2,2", "--vectors")
+        self.assertEqual((status, err), (0, ""))
+
+
 if __name__ == "__main__":
     unittest.main()
