@@ -39,6 +39,10 @@ SIGMA = {1: 2.0 / 3.0, 2: 10.0 / (7.0 * math.pi), 3: 1.0 / math.pi}
 #: (Dehnen & Aly 2012, MNRAS 425, 1068, table 1); SPH-ASTRO's M4 has support 2h
 SWIFT_KERNEL_GAMMA = {2: 1.778002, 3: 1.825742}
 
+#: the most pixels a map may have across either axis: the PNG shows about 300 across, and
+#: 4096^2 doubles are 134 MB per array the deposit holds
+MAX_RES = 4096
+
 
 def kernel_w(q):
     """The dimensionless M4 shape w(q) (support q < 2)."""
@@ -374,29 +378,39 @@ def _deposit(grid_shape, x0, dx, centres, h, weights, profile, offset=None,
     ny, nx = grid_shape
     img = np.zeros(ny * nx)
     off2 = np.zeros(len(h)) if offset is None else np.asarray(offset, dtype=float) ** 2
-    # footprint half-widths in pixels, grouped so that each group is one array operation
-    half = np.ceil(2.0 * h[:, None] / dx[None, :]).astype(int) + 1
-    key = np.maximum(half[:, 0], half[:, 1])
-    for k in np.unique(key):
-        sel = np.nonzero(key == k)[0]
-        off = np.arange(-k, k + 1)
-        per = max(1, batch // (len(off) ** 2))
+    # the pixels around the one holding each particle, 2h and one more on either side,
+    # clipped to the image: a particle far outside it costs nothing, and one far larger than
+    # it (a window much smaller than h) at most the image, where the whole square of pixels
+    # would exhaust the memory
+    bounds, reach = [], []
+    for a, n in ((0, nx), (1, ny)):
+        with np.errstate(over="ignore", invalid="ignore"):
+            at = np.floor((centres[:, a] - x0[a]) / dx[a])
+            reach.append(np.ceil(2.0 * h / dx[a]) + 1.0)
+            bounds += [np.clip(at - reach[-1], 0, n), np.clip(at + reach[-1], -1, n - 1)]
+    keep = (bounds[1] >= bounds[0]) & (bounds[3] >= bounds[2])     # False for a NaN too
+    ilo, ihi, jlo, jhi = (np.where(keep, b, 0).astype(int) for b in bounds)
+    # footprints grouped by their width in pixels, so that each group is one array operation;
+    # the unclipped width (at most the image's) keeps the groups few, the mask below the
+    # image's edges
+    width = np.minimum(2.0 * np.maximum(*reach) + 1.0, max(nx, ny)).astype(int)
+    for k in np.unique(width[keep]):
+        sel = np.flatnonzero(keep & (width == k))
+        off = np.arange(k)
+        per = max(1, batch // (k * k))
         for start in range(0, len(sel), per):
             idx = sel[start:start + per]
             c = centres[idx]
             hh = h[idx, None, None]
-            # the pixel holding each particle, then the (2k+1)^2 pixels around it
-            i0 = np.floor((c[:, 0] - x0[0]) / dx[0]).astype(int)
-            j0 = np.floor((c[:, 1] - x0[1]) / dx[1]).astype(int)
-            ii = i0[:, None, None] + off[None, None, :]
-            jj = j0[:, None, None] + off[None, :, None]
+            ii = ilo[idx, None, None] + off[None, None, :]
+            jj = jlo[idx, None, None] + off[None, :, None]
             px = x0[0] + (ii + 0.5) * dx[0]
             py = x0[1] + (jj + 0.5) * dx[1]
             r2 = (px - c[:, 0, None, None]) ** 2 + (py - c[:, 1, None, None]) ** 2 \
                 + off2[idx, None, None]
             val = weights[idx, None, None] * profile(np.sqrt(r2) / hh, hh)
             ii, jj, val = np.broadcast_arrays(ii, jj, val)
-            inside = (ii >= 0) & (ii < nx) & (jj >= 0) & (jj < ny) & (val != 0.0)
+            inside = (ii <= ihi[idx, None, None]) & (jj <= jhi[idx, None, None]) & (val != 0.0)
             img += np.bincount(jj[inside] * nx + ii[inside], weights=val[inside],
                                minlength=ny * nx)
     return img.reshape(ny, nx)
@@ -406,11 +420,21 @@ def _grid(extent, res):
     """extent ((xlo, xhi), (ylo, yhi)) and res (nx or (nx, ny)) -> shape, corner, pixel size;
     square pixels: ny follows from the aspect ratio when one number is given."""
     (xlo, xhi), (ylo, yhi) = extent
+    if not (np.all(np.isfinite([xlo, xhi, ylo, yhi])) and xlo < xhi and ylo < yhi):
+        raise ValueError(f"--extent {xlo:g},{xhi:g},{ylo:g},{yhi:g}: expected four finite "
+                         "numbers with X0 < X1 and Y0 < Y1")
     if np.ndim(res) == 0:
         nx = int(res)
-        ny = max(1, int(round(nx * (yhi - ylo) / (xhi - xlo))))
+        ny = nx * ((yhi - ylo) / (xhi - xlo))
+        if not ny <= MAX_RES:               # an inf too
+            raise ValueError(f"--extent {xlo:g},{xhi:g},{ylo:g},{yhi:g}: a window {ny / nx:.3g} "
+                             f"times taller than wide has {ny:.3g} pixels up at --res {nx} (at "
+                             f"most {MAX_RES}): widen it or lower --res")
+        ny = max(1, int(round(ny)))
     else:
         nx, ny = (int(v) for v in res)
+    if not (1 <= nx <= MAX_RES and 1 <= ny <= MAX_RES):
+        raise ValueError(f"--res {res}: expected a whole number of pixels from 1 to {MAX_RES}")
     dx = np.array([(xhi - xlo) / nx, (yhi - ylo) / ny])
     return (ny, nx), np.array([xlo, ylo]), dx
 
@@ -470,11 +494,6 @@ def column_map(p, values, axis="z", res=256, extent=None):
     img = _deposit(shape, x0, dx, p.pos[:, axes], p.h, vol * a,
                    lambda q, hh: kernel_column(q) / (hh * hh))
     return img, extent
-
-
-#: the most pixels a map may have across either axis: the PNG shows about 300 across, and
-#: 4096^2 doubles are 134 MB per array the deposit holds
-MAX_RES = 4096
 
 
 def _option_value(what):
@@ -681,6 +700,12 @@ def render(path, out, field="rho", slice_=None, column=None, res=256, vrange=Non
     if bad:
         warnings.warn(f"--field {field}: {bad} of {len(p.pos)} particles have a value that is "
                       "not finite: the pixels they reach are blank", RenderWarning, stacklevel=2)
+    if p.box is not None and (extent is None or periodic):
+        for a, (lo, hi) in enumerate(p.box):
+            if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
+                raise FileError(f"{path}: the box is empty along {'xyz'[a]} ({lo:g} to {hi:g}): "
+                                + ("--periodic has no period" if periodic else
+                                   "give the window with --extent"))
     if periodic:
         p = periodic_images(p, None if column is None else
                             [a for a in range(3) if a != AXES[column]])

@@ -370,5 +370,41 @@ class BlankPictureTest(Case):
         self.assertEqual((status, err), (0, ""))
 
 
+class AbsurdWindowTest(Case):
+    """Windows and kernels far out of proportion to each other: a map, or an error naming the
+    option, never an exhausted memory."""
+
+    def test_window_far_smaller_than_a_kernel(self):
+        # 2h / pixel ~ 10^7: the footprint of each particle is clipped to the image
+        status, out, err = run(self.dump, "--out", self.png, "--res", "16",
+                               "--extent=0,1e-6,0,1e-6", "--range", "0,2")
+        self.assertEqual(status, 0, err)
+        self.assertIn("map 16 x 16", out)
+
+    def test_particle_far_larger_than_the_window(self):
+        pos = lattice(3)
+        h = np.full(len(pos), 1.2 * A)
+        h[13] = 1e6                                   # the centre particle
+        dump = self.path("dump.wide")
+        write_dump(dump, pos, 1.0, h, {"mass": A ** 3})
+        status, out, err = run(dump, "--out", self.png, "--res", "16")
+        self.assertEqual(status, 0, err)
+
+    def test_window_of_an_extreme_aspect_ratio(self):
+        self.assertUsageError([self.dump, "--out", self.png, "--extent=0,1e-6,0,1"],
+                              "--extent", "--res 256", "4096")
+
+    def test_box_of_zero_width_without_extent(self):
+        dump = self.path("dump.flatbox")
+        write_dump(dump, lattice(3), 1.0, 1.2 * A, box=(0.0, 0.0))
+        status, _, err = run(dump, "--out", self.png, "--res", "16")
+        self.assertEqual(status, 1, err)
+        self.assertIn(f"{dump}: the box is empty", err)
+        self.assertIn("--extent", err)
+        # the window given, the box is not needed
+        status, _, err = run(dump, "--out", self.png, "--res", "16", "--extent=-1,1,-1,1")
+        self.assertEqual(status, 0, err)
+
+
 if __name__ == "__main__":
     unittest.main()
