@@ -369,6 +369,9 @@ def read_particles(path, mass=None, hfact=1.2, h_factor=None, frame=-1):
     return _read_dump(path, mass, hfact, h_factor, frame)
 
 
+# absurd scales (a window of 1e200, h of 1e-300) overflow to inf, and w(inf) = 0: an empty
+# map is reported, with its reason, by render's warnings rather than numpy's
+@np.errstate(all="ignore")
 def _deposit(grid_shape, x0, dx, centres, h, weights, profile, offset=None,
              batch=4_000_000):
     """Sum weights_j profile(|r - r_j| / h_j, h_j) over the pixel centres r within 2 h_j of each
@@ -384,10 +387,9 @@ def _deposit(grid_shape, x0, dx, centres, h, weights, profile, offset=None,
     # would exhaust the memory
     bounds, reach = [], []
     for a, n in ((0, nx), (1, ny)):
-        with np.errstate(over="ignore", invalid="ignore"):
-            at = np.floor((centres[:, a] - x0[a]) / dx[a])
-            reach.append(np.ceil(2.0 * h / dx[a]) + 1.0)
-            bounds += [np.clip(at - reach[-1], 0, n), np.clip(at + reach[-1], -1, n - 1)]
+        at = np.floor((centres[:, a] - x0[a]) / dx[a])
+        reach.append(np.ceil(2.0 * h / dx[a]) + 1.0)
+        bounds += [np.clip(at - reach[-1], 0, n), np.clip(at + reach[-1], -1, n - 1)]
     keep = (bounds[1] >= bounds[0]) & (bounds[3] >= bounds[2])     # False for a NaN too
     ilo, ihi, jlo, jhi = (np.where(keep, b, 0).astype(int) for b in bounds)
     # footprints grouped by their width in pixels, so that each group is one array operation;
@@ -408,7 +410,9 @@ def _deposit(grid_shape, x0, dx, centres, h, weights, profile, offset=None,
             py = x0[1] + (jj + 0.5) * dx[1]
             r2 = (px - c[:, 0, None, None]) ** 2 + (py - c[:, 1, None, None]) ** 2 \
                 + off2[idx, None, None]
-            val = weights[idx, None, None] * profile(np.sqrt(r2) / hh, hh)
+            q = np.sqrt(r2) / hh
+            # w = 0 beyond q = 2 exactly, also where the kernel's 1/h^d overflows (no inf x 0)
+            val = np.where(q < 2.0, weights[idx, None, None] * profile(q, hh), 0.0)
             ii, jj, val = np.broadcast_arrays(ii, jj, val)
             inside = (ii <= ihi[idx, None, None]) & (jj <= jhi[idx, None, None]) & (val != 0.0)
             img += np.bincount(jj[inside] * nx + ii[inside], weights=val[inside],
@@ -420,9 +424,12 @@ def _grid(extent, res):
     """extent ((xlo, xhi), (ylo, yhi)) and res (nx or (nx, ny)) -> shape, corner, pixel size;
     square pixels: ny follows from the aspect ratio when one number is given."""
     (xlo, xhi), (ylo, yhi) = extent
-    if not (np.all(np.isfinite([xlo, xhi, ylo, yhi])) and xlo < xhi and ylo < yhi):
+    with np.errstate(over="ignore"):
+        widths = np.array([xhi - xlo, yhi - ylo], dtype=float)
+    if not (np.all(np.isfinite([xlo, xhi, ylo, yhi])) and xlo < xhi and ylo < yhi and
+            np.all(np.isfinite(widths))):
         raise ValueError(f"--extent {xlo:g},{xhi:g},{ylo:g},{yhi:g}: expected four finite "
-                         "numbers with X0 < X1 and Y0 < Y1")
+                         "numbers with X0 < X1 and Y0 < Y1, the widths finite")
     if np.ndim(res) == 0:
         nx = int(res)
         ny = nx * ((yhi - ylo) / (xhi - xlo))
@@ -433,7 +440,7 @@ def _grid(extent, res):
         ny = max(1, int(round(ny)))
     else:
         nx, ny = (int(v) for v in res)
-    if not (1 <= nx <= MAX_RES and 1 <= ny <= MAX_RES):
+    if not (1 <= nx <= MAX_RES and 1 <= ny <= MAX_RES):           # a tuple given
         raise ValueError(f"--res {res}: expected a whole number of pixels from 1 to {MAX_RES}")
     dx = np.array([(xhi - xlo) / nx, (yhi - ylo) / ny])
     return (ny, nx), np.array([xlo, ylo]), dx
@@ -542,18 +549,20 @@ def _slice(text):
     return axis, _finite(value)
 
 
-@_option_value("LO,HI: two finite numbers with LO < HI (log10 of the map with --log)")
+@_option_value("LO,HI: two finite numbers with LO < HI, HI - LO finite (log10 of the map "
+               "with --log)")
 def _range(text):
     lo, hi = (_finite(v) for v in text.split(","))
-    if not lo < hi:
+    if not (lo < hi and math.isfinite(hi - lo)):
         raise ValueError(text)
     return lo, hi
 
 
-@_option_value("X0,X1,Y0,Y1: four finite numbers with X0 < X1 and Y0 < Y1")
+@_option_value("X0,X1,Y0,Y1: four finite numbers with X0 < X1 and Y0 < Y1, the widths "
+               "finite")
 def _window(text):
     x0, x1, y0, y1 = (_finite(v) for v in text.split(","))
-    if not (x0 < x1 and y0 < y1):
+    if not (x0 < x1 and y0 < y1 and math.isfinite(x1 - x0) and math.isfinite(y1 - y0)):
         raise ValueError(text)
     return (x0, x1), (y0, y1)
 
@@ -610,11 +619,11 @@ class RenderWarning(UserWarning):
     """A picture that comes out blank or of one colour; the message says why."""
 
 
-def _why_blank(p, img, data, ext, plane, field, log, vrange, slice_=None):
-    """Why the picture of ``data`` (``img``, or its log10) is blank or of one colour, or None:
-    no particle's kernel reaches the slice plane (``slice_`` = (axis, value)) or the window
-    ``ext``, no positive pixel for --log, no finite pixel, one value everywhere, the whole map
-    outside --range."""
+def _why_blank(p, values, img, data, ext, plane, field, log, vrange, slice_=None):
+    """Why the picture of ``data`` (``img``, or its log10; ``values`` the field's) is blank or
+    of one colour, or None: no particle's kernel reaches the slice plane (``slice_`` = (axis,
+    value)) or the window ``ext``, kernels between the pixel centres, no positive pixel for
+    --log, no finite pixel, one value everywhere, the whole map outside --range."""
     near = np.ones(len(p.pos), dtype=bool)
     if slice_ is not None:
         axis, at = slice_
@@ -636,6 +645,14 @@ def _why_blank(p, img, data, ext, plane, field, log, vrange, slice_=None):
                 f"{' in the slice' if slice_ is not None else ''} reaches it (they span "
                 f"{span}): the map is empty and the picture blank (choose the window with "
                 "--extent)")
+    pixel = max((hi - lo) / n for (lo, hi), n in zip(ext, img.shape[::-1]))
+    support = 2.0 * p.h[reach]
+    if not np.any(img[np.isfinite(img)] != 0.0) and np.any((p.mass * values)[reach] != 0.0) \
+            and support.min() < pixel:
+        return (f"the kernels of the particles that reach the window ({len(support)}; 2h "
+                f"from {support.min():.3g} to {support.max():.3g}) fall between the pixel "
+                f"centres, {pixel:.3g} apart: the map is 0 and the picture blank (raise --res "
+                "or narrow --extent)")
     finite = data[np.isfinite(data)]
     if log and finite.size == 0:
         values = img[np.isfinite(img)]
@@ -676,6 +693,9 @@ def render(path, out, field="rho", slice_=None, column=None, res=256, vrange=Non
     if p.dim == 2 and column is not None:
         raise ValueError(f"--column {column}: {path} holds 2D data, and a column map needs 3D "
                          "(without --column the map is the plane of the data)")
+    if normalise and column is not None:
+        raise ValueError(f"--normalise divides a slice by sum_j m_j/rho_j W; a column map "
+                         f"(--column {column}) has no such division (leave out one of them)")
     if p.dim == 2 and slice_ is not None:
         raise ValueError(f"--slice {slice_[0]}={slice_[1]:g}: {path} holds 2D data, and the "
                          "map is their plane (leave out --slice)")
@@ -729,7 +749,7 @@ def render(path, out, field="rho", slice_=None, column=None, res=256, vrange=Non
     fig = Figure(figsize=(4.6, 3.8))
     ax = fig.subplots()
     data = np.log10(np.where(img > 0.0, img, np.nan)) if log else img
-    why = _why_blank(p, img, data, ext, axes, field, log, vrange,
+    why = _why_blank(p, values, img, data, ext, axes, field, log, vrange,
                      None if column is not None or p.dim == 2 else (axis, at))
     if why:
         warnings.warn(why, RenderWarning, stacklevel=2)

@@ -87,7 +87,7 @@ class OptionValueTest(Case):
 
     def test_extent_of_zero_or_negative_width(self):
         for bad in ("0,0,0,1", "0,1,2,2", "1,0,0,1", "0,1,nan,1", "0,inf,0,1", "a,b,c,d",
-                    "0,1,0"):
+                    "0,1,0", "-1e308,1e308,0,1"):
             self.assertUsageError([self.dump, "--out", self.png, f"--extent={bad}"],
                                   "--extent", bad, "X0 < X1")
 
@@ -102,7 +102,7 @@ class OptionValueTest(Case):
                                   "--res", repr(bad), "1 to 4096")
 
     def test_range_empty_reversed_or_not_numbers(self):
-        for bad in ("5,1", "1,1", "nan,1", "0,inf", "a,b", "1", "1,2,3"):
+        for bad in ("5,1", "1,1", "nan,1", "0,inf", "a,b", "1", "1,2,3", "-1e308,1e308"):
             self.assertUsageError([self.dump, "--out", self.png, f"--range={bad}"],
                                   "--range", repr(bad), "LO < HI")
 
@@ -157,6 +157,10 @@ class OptionForTheDataTest(Case):
                               "--column", "2D", self.dump2d)
         self.assertUsageError([self.dump2d, "--out", self.png, "--slice", "z=0.1"],
                               "--slice", "2D", self.dump2d)
+
+    def test_normalise_of_a_column_map(self):
+        self.assertUsageError([self.dump, "--out", self.png, "--column", "z", "--normalise"],
+                              "--normalise", "--column")
 
     def test_frame_that_does_not_exist(self):
         self.assertUsageError([self.dump, "--out", self.png, "--frame", "3"],
@@ -345,6 +349,14 @@ class BlankPictureTest(Case):
                           "one colour")
         self.assertWarned([self.dump, "--log", "--range=-9,-8"], "--range -9,-8", "log10",
                           "outside")
+
+    def test_kernels_between_the_pixel_centres(self):
+        # pixels 125 wide, kernels 0.5 across: no pixel centre within 2h of a particle
+        self.assertWarned([self.dump, "--extent=-1e3,1e3,-1e3,1e3"], "between the pixel "
+                          "centres", "blank", "--res")
+        # absurd scales overflow in the sums; the warning says why, numpy's do not show
+        self.assertWarned([self.dump, "--extent=-1e200,1e200,-1e200,1e200"], "between the "
+                          "pixel centres")
 
     def test_field_with_values_that_are_not_finite(self):
         pos = lattice()
