@@ -39,7 +39,7 @@ SIGMA = {1: 2.0 / 3.0, 2: 10.0 / (7.0 * math.pi), 3: 1.0 / math.pi}
 #: (Dehnen & Aly 2012, MNRAS 425, 1068, table 1); SPH-ASTRO's M4 has support 2h
 SWIFT_KERNEL_GAMMA = {2: 1.778002, 3: 1.825742}
 
-#: the most pixels a map may have across either axis: the PNG shows about 300 across, and
+#: the most pixels a map may have across either axis: the PNG shows the map on about 280, and
 #: 4096^2 doubles are 134 MB per array the deposit holds
 MAX_RES = 4096
 
@@ -655,8 +655,8 @@ def _why_blank(p, values, img, data, ext, plane, field, log, vrange, slice_=None
                 "or narrow --extent)")
     finite = data[np.isfinite(data)]
     if log and finite.size == 0:
-        values = img[np.isfinite(img)]
-        span = f" ({field} from {values.min():.4g} to {values.max():.4g})" if values.size else ""
+        pixels = img[np.isfinite(img)]
+        span = f" ({field} from {pixels.min():.4g} to {pixels.max():.4g})" if pixels.size else ""
         return (f"--log: no pixel of the map is positive{span}: the picture is blank "
                 "(leave out --log)")
     if finite.size == 0:
@@ -801,7 +801,11 @@ def add_parser(sub):
                        "snapshot to a PNG",
                        description="Slice (sum_j m_j/rho_j A_j W) or column (line-of-sight "
                        "integral) map of a LAMMPS text dump (any frame) or a SWIFT-layout "
-                       "HDF5 snapshot, with SPH-ASTRO's M4 kernel (Price 2007, PASA 24, 159).")
+                       "HDF5 snapshot, with SPH-ASTRO's M4 kernel (Price 2007, PASA 24, 159).",
+                       epilog="Exit status 2: a bad option value (or one the data do not fit); "
+                       "1: a file that cannot be read or written; 0: the picture written, also "
+                       "when it comes out blank or of one colour (then with a warning on stderr "
+                       "saying why).")
     r.add_argument("snapshot", help="LAMMPS text dump (columns x y [z] rho h ...) or HDF5")
     r.add_argument("--out", required=True, type=_picture,
                    help="PNG to write (or .pdf, .svg, ...: the formats of matplotlib)")
