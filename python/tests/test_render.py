@@ -198,10 +198,6 @@ class FilesTest(unittest.TestCase):
         self.assertTrue(np.allclose(q.h, 1.2 * A))
 
 
-if __name__ == "__main__":
-    unittest.main()
-
-
 class PeriodicTest(unittest.TestCase):
     def test_periodic_images_make_the_map_uniform_up_to_the_faces(self):
         g = np.arange(-1.0, 1.0 - 1e-9, A)          # 20 layers: period 2
@@ -218,3 +214,7 @@ class PeriodicTest(unittest.TestCase):
         q = render.periodic_images(p, axes=(0, 1))      # none along the line of sight
         col, _ = render.column_map(q, q.rho, "z", 40, full)
         self.assertLess(np.abs(col / 2.0 - 1.0).max(), 1.5e-2)
+
+
+if __name__ == "__main__":
+    unittest.main()
