@@ -38,6 +38,7 @@
 #include "modify.h"
 #include "neighbor.h"
 #include "output.h"
+#include "sph_astro_active_set.h"
 #include "sph_astro_conduction.h"
 #include "sph_astro_individual_steps.h"
 #include "sph_astro_options.h"
@@ -323,6 +324,11 @@ void FixSPHAstro::init()
     steps_->check_options(pair_->options(), entropy_, igroup);
     steps_->init(*state_, unchanged);
   }
+  // the force styles below the integrator: which particles are active, when a grid solver
+  // computes (their init has reset both)
+  active_clients_ = steps_ ? active_set_clients(lmp) : std::vector<ActiveSetClient *>();
+  if (long_range_sync_)
+    for (LongRangeClient *client : long_range_clients(lmp)) client->set_long_range_schedule(steps_);
   if (predicted_step_ != update->ntimestep || !unchanged) {
     const int nlocal = atom->nlocal;
     double **v = atom->v;
@@ -388,12 +394,24 @@ double FixSPHAstro::current_time() const
 
 void FixSPHAstro::setup_pre_force(int /*vflag*/)
 {
-  if (steps_) steps_->setup_pre_force(pair_);
+  if (!steps_) return;
+  steps_->setup_pre_force(pair_);
+  tell_active_set();
 }
 
 void FixSPHAstro::pre_force(int /*vflag*/)
 {
-  if (steps_) steps_->pre_force(pair_);
+  if (!steps_) return;
+  steps_->pre_force(pair_);
+  tell_active_set();
+}
+
+void FixSPHAstro::tell_active_set()
+{
+  ActiveSet set;
+  set.flags = steps_->active_flags();
+  set.groupbit = groupbit;
+  for (ActiveSetClient *client : active_clients_) client->set_active_set(set);
 }
 
 // an atom outside a shrink-wrapped box with a grid solver (sph_astro_shrink_wrap.h)
@@ -574,6 +592,10 @@ void FixSPHAstro::post_run()
 {
   if (steps_) steps_->log_summary();                // the hierarchy's figures and its bins
   if (sync_energy_) sync_energy_->log_summary();    // its energy at synchronisation points
+  for (ActiveSetClient *client : active_set_clients(lmp)) {
+    const std::string line = client->run_summary();    // (collective)
+    if (!line.empty() && comm->me == 0) utils::logmesg(lmp, line + "\n");
+  }
   // a stop at tend ends this run only; later runs get the user's timeout back
   if (stopped_at_tend_) timer->reset_timeout();
   // a fixed step shortened to land on tend is the user's step again

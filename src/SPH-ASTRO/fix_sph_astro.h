@@ -22,6 +22,7 @@ FixStyle(sph/astro,FixSPHAstro);
 #include <vector>
 
 namespace SPHAstro {
+class ActiveSetClient;
 struct StateIndex;
 struct EntropyIndex;
 struct ContinuityIndex;
@@ -71,13 +72,6 @@ class FixSPHAstro : public Fix {
   // with steps individual: owned atom i is inside its step now (v and u are those of the middle
   // of its step; d2_vest and d_uest hold them at the current time)
   bool mid_step(int i) const;
-
-  // longrange sync: the hierarchy the kspace gravity solvers ask whether to compute (nullptr:
-  // at every step)
-  SPHAstro::IndividualSteps *long_range_split() const
-  {
-    return long_range_sync_ ? steps_ : nullptr;
-  }
 
   // the step owned atom i's own timestep criteria allow (the smallest of them, at most dtmax;
   // infinite where none applies), at its latest force evaluation
@@ -141,6 +135,9 @@ class FixSPHAstro : public Fix {
 
   // individual timesteps (steps individual; sph_astro_individual_steps.h), null: global
   SPHAstro::IndividualSteps *steps_ = nullptr;
+  // the force styles that evaluate the active particles only (gravity; found at init)
+  std::vector<SPHAstro::ActiveSetClient *> active_clients_;
+  void tell_active_set();
   SPHAstro::SyncEnergy *sync_energy_ = nullptr;    // individual steps: E at synchronisation
   bool pair_kicks_ = true;    // individual steps: pair forces and du/dt integrated pair by pair
   // individual steps: the kspace gravity only where all particles end their step (longrange

@@ -23,7 +23,6 @@
 #include "msm_sph_astro_gravity.h"
 
 #include "sph_astro_gravity_kspace.h"
-#include "sph_astro_individual_steps.h"
 
 #include "comm.h"
 #include "domain.h"
@@ -58,6 +57,7 @@ void MSMSPHAstroGravity::settings(int narg, char **arg)
 
 void MSMSPHAstroGravity::init()
 {
+  schedule_ = nullptr;    // fix sph/astro longrange sync sets it at its init, after this
   if (domain->dimension == 2)
     error->all(FLERR,
                "{}: LAMMPS' MSM works in 3d only; in 2d use pair_style sph/astro/gravity "
@@ -83,7 +83,7 @@ void MSMSPHAstroGravity::compute(int eflag, int vflag)
 {
   // fix sph/astro longrange sync: the forces only where every particle ends its step, kept
   // apart; in between only the energy and virial when asked for (its forces are taken back)
-  IndividualSteps *split = long_range_split(lmp);
+  LongRangeSchedule *split = schedule_;
   const bool energy_only = split && !split->long_range_due();
   if (energy_only && !eflag && !vflag) return;
   masses_to_charges(lmp);

@@ -19,19 +19,26 @@ KSpaceStyle(msm/sph/astro/gravity,MSMSPHAstroGravity);
 #define LMP_MSM_SPH_ASTRO_GRAVITY_H
 
 #include "msm.h"
+#include "sph_astro_active_set.h"
 
 namespace LAMMPS_NS {
 
-class MSMSPHAstroGravity : public MSM {
+class MSMSPHAstroGravity : public MSM, public SPHAstro::LongRangeClient {
  public:
   MSMSPHAstroGravity(class LAMMPS *);
   void settings(int, char **) override;
   void init() override;
   void setup() override;
   void compute(int, int) override;
+  // fix sph/astro longrange sync: compute where every particle ends its step (null: always)
+  void set_long_range_schedule(SPHAstro::LongRangeSchedule *schedule) override
+  {
+    schedule_ = schedule;
+  }
 
  protected:
   double G_;
+  SPHAstro::LongRangeSchedule *schedule_ = nullptr;
   double spacing_[3] = {0.0, 0.0, 0.0};    // finest grid spacing of the run start (0: none)
 
   void refine_grid_to_box();

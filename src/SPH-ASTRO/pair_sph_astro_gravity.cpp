@@ -47,6 +47,7 @@
 
 #include "pair_sph_astro.h"
 #include "sph_astro_gravity_kernel.h"
+#include "sph_astro_gravity_pair.h"
 #include "sph_astro_gravity_kspace.h"
 #include "sph_astro_options.h"
 
@@ -223,6 +224,7 @@ void PairSPHAstroGravity::init_style()
   if (domain->triclinic)
     error->all(FLERR, "pair_style sph/astro/gravity: triclinic boxes are not supported");
   resolve_gravity_constant();
+  active_ = ActiveSet();    // all active until fix sph/astro says otherwise
 
   // the kernel of pair sph/astro, if present
   auto *sph = dynamic_cast<PairSPHAstro *>(force->pair_match("^sph/astro$", 0, 0));
@@ -272,12 +274,15 @@ void PairSPHAstroGravity::init_style()
       g_ewald_ = force->kspace->g_ewald;
     } else if (style == "msm/sph/astro/gravity")
       split_ = Split::MSM;
+    else if (style == "tree/sph/astro/gravity")
+      split_ = Split::TREE;
     else
       error->all(FLERR,
                  "pair_style sph/astro/gravity: kspace_style {} is not a gravity solver; use "
-                 "pppm/sph/astro/gravity (periodic) or msm/sph/astro/gravity (open boundaries)",
+                 "tree/sph/astro/gravity or msm/sph/astro/gravity (open boundaries), or "
+                 "pppm/sph/astro/gravity (periodic)",
                  style);
-    if (R * hmax_all > cut_global_)
+    if (split_ != Split::TREE && R * hmax_all > cut_global_)
       error->all(FLERR,
                  "pair_style sph/astro/gravity: cutoff {} is shorter than the softening support "
                  "{} x h = {} of the largest h; the short-range part must cover it",
@@ -296,9 +301,9 @@ void PairSPHAstroGravity::init_style()
                      "out",
                      cut_global_, diag);
   }
-  // direct summation sums over all atoms itself (gather_all); the kspace split needs the
-  // short-range neighbour list
-  if (split_ != Split::NONE) neighbor->add_request(this);
+  // direct summation sums over all atoms itself (gather_all), the tree too; the kspace split
+  // needs the short-range neighbour list
+  if (split_ == Split::EWALD || split_ == Split::MSM) neighbor->add_request(this);
 }
 
 double PairSPHAstroGravity::init_one(int i, int j)
@@ -318,6 +323,13 @@ double PairSPHAstroGravity::init_one(int i, int j)
 void PairSPHAstroGravity::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
+  // the tree (kspace tree/sph/astro/gravity) computes every pair; it takes zeta/Omega of the
+  // owned atoms from here
+  if (split_ == Split::TREE) {
+    zeta_active_ = zeta_terms_apply();
+    if (zeta_active_) compute_zeta();
+    return;
+  }
   // ghosts need this step's softening lengths (fix sph/astro/h may have changed them)
   if (have_state_) {
     comm_stage_ = Stage::H;
@@ -327,7 +339,7 @@ void PairSPHAstroGravity::compute(int eflag, int vflag)
   // individual timesteps: forces only for the pairs with an active atom, unless the virial or
   // per-atom energies are tallied (they need every pair's force)
   active_pairs_only_ =
-      split_ == Split::NONE && sph_ && sph_->active_flags() && !vflag_either && !eflag_atom;
+      split_ == Split::NONE && !active_.all() && !vflag_either && !eflag_atom;
   zeta_active_ = zeta_terms_apply();
   if (zeta_active_) compute_zeta();
   const bool cubic = kernel_ == KernelType::CUBIC;
@@ -421,13 +433,6 @@ template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int e
   const KSpace *kspace = force->kspace;
   const KernelType kernel = kernel_;
 
-  auto kernel_eval = [&](double q, double &fp, double &ff) {
-    if (CUBIC)
-      SoftenedCubic::eval(q, fp, ff);
-    else
-      soft.eval(q, fp, ff);
-  };
-
   // potential e (per G m_i m_j) of the part this pair style supplies and D = de/dr plus the zeta
   // terms, so that F_i = -G m_i m_j D r_ij/r; zoi, zoj: zeta/Omega of the two atoms
   auto pair_term = [&](double rsq, double hi, double hj, double zoi, double zoj, double &e,
@@ -437,17 +442,8 @@ template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int e
     // supports (computed as the difference only inside, so no cancellation outside)
     double s = 0.0, ds = 0.0, dzeta = 0.0;
     if (r < R * MAX(hi, hj)) {
-      const double hiinv = 1.0 / hi;
-      double pi, fi;
-      kernel_eval(r * hiinv, pi, fi);
-      double phi = pi * hiinv, dphi = fi * hiinv * hiinv;
-      if (hj != hi) {
-        const double hjinv = 1.0 / hj;
-        double pj, fj;
-        kernel_eval(r * hjinv, pj, fj);
-        phi = 0.5 * (phi + pj * hjinv);
-        dphi = 0.5 * (dphi + fj * hjinv * hjinv);
-      }
+      double phi, dphi;
+      softened_pair_inside<CUBIC>(soft, r, hi, hj, phi, dphi);
       if (r == 0.0) {    // coincident atoms: finite potential, no force
         e = phi;
         if (SPLIT == 1) e += 2.0 * g / MY_PIS;
@@ -458,8 +454,7 @@ template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int e
       s = phi + 1.0 / r;
       ds = dphi - 1.0 / rsq;
       // zeta terms: 1/2 [zeta_i/Omega_i dW/dr(h_i) + zeta_j/Omega_j dW/dr(h_j)]
-      if (ZETA)
-        dzeta = 0.5 * (zoi * kernel_dwdr3(kernel, r, hi) + zoj * kernel_dwdr3(kernel, r, hj));
+      if (ZETA) dzeta = zeta_pair_term(kernel, r, hi, hj, zoi, zoj);
     }
     double de;
     if (SPLIT == 0) {
@@ -646,10 +641,11 @@ template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int e
   const int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
   // individual timesteps: pairs of two inactive atoms left out, as above (owned and ghost flags)
-  const char *active = (sph_ && !evflag) ? sph_->active_flags() : nullptr;
+  const bool some = !evflag && !active_.all();
+  const int *mask = atom->mask;
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
-    const char *partner_active = (active && !active[i]) ? active : nullptr;
+    const bool i_inactive = some && !active_.active(i, mask);    // then active partners only
     const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
     const double mi = rmass ? rmass[i] : mass[type[i]];
     const double hi = (hstate && hstate[i] > 0.0) ? hstate[i] : hfix;
@@ -664,7 +660,7 @@ template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int e
     const int jnum = numneigh[i];
     for (int jj = 0; jj < jnum; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
-      if (partner_active && !partner_active[j]) continue;
+      if (i_inactive && !active_.active(j, mask)) continue;
       const double delx = xi - x[j][0], dely = yi - x[j][1], delz = zi - x[j][2];
       const double rsq = delx * delx + dely * dely + delz * delz;
       if (rsq >= cutsq) continue;

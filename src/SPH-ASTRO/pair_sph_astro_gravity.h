@@ -19,6 +19,7 @@ PairStyle(sph/astro/gravity,PairSPHAstroGravity);
 #define LMP_PAIR_SPH_ASTRO_GRAVITY_H
 
 #include "pair.h"
+#include "sph_astro_active_set.h"
 
 #include <vector>
 
@@ -29,7 +30,7 @@ enum class KernelType;
 
 namespace LAMMPS_NS {
 
-class PairSPHAstroGravity : public Pair {
+class PairSPHAstroGravity : public Pair, public SPHAstro::ActiveSetClient {
  public:
   PairSPHAstroGravity(class LAMMPS *);
   ~PairSPHAstroGravity() override;
@@ -48,6 +49,8 @@ class PairSPHAstroGravity : public Pair {
   void *extract(const char *, int &) override;
   void *extract_peratom(const char *, int &) override;
   double memory_usage() override;
+  // individual timesteps (fix sph/astro): the pairs with an active atom only
+  void set_active_set(const SPHAstro::ActiveSet &set) override { active_ = set; }
 
   // for compute sph/astro/gravity/direct (valid after init_style)
   double gravity_constant() const { return G_; }
@@ -55,14 +58,19 @@ class PairSPHAstroGravity : public Pair {
   // softening length of local or ghost atom i: d_h of the SPH state if > 0, else the fixed h
   double softening_length(int i) const;
   double cutoff() const { return cut_global_; }
-  // the cutoff LAMMPS' lists and ghost shell need: none with direct summation
-  double list_cutoff() const { return split_ == Split::NONE ? 0.0 : cut_global_; }
+  // the cutoff LAMMPS' lists and ghost shell need: none with direct summation or the tree
+  double list_cutoff() const
+  {
+    return (split_ == Split::NONE || split_ == Split::TREE) ? 0.0 : cut_global_;
+  }
   // the adaptive-softening terms were part of the latest force evaluation
   bool zeta_active() const { return zeta_active_; }
+  // zeta_i / Omega_i of the owned atoms for the latest force evaluation (null: no zeta terms)
+  const double *zeta_over_omega() const { return zeta_active_ ? zeta_over_omega_ : nullptr; }
 
   // long-range split of the active gravity kspace: none (direct summation within the
-  // cutoff), Ewald/PPPM (erfc split) or MSM (gamma split)
-  enum class Split { NONE = 0, EWALD = 1, MSM = 2 };
+  // cutoff), Ewald/PPPM (erfc split), MSM (gamma split), or the tree, which computes all of it
+  enum class Split { NONE = 0, EWALD = 1, MSM = 2, TREE = 3 };
 
  protected:
   double cut_global_;
@@ -100,7 +108,8 @@ class PairSPHAstroGravity : public Pair {
   // eval: one row's pairs beyond the softening support (force, energy) and each pair's kind
   std::vector<double> row_force_, row_energy_;
   std::vector<char> row_kind_;
-  // individual timesteps (pair sph/astro's active flags): the flags of all atoms (gathered)
+  SPHAstro::ActiveSet active_;    // all active unless fix sph/astro says otherwise
+  // individual timesteps: the flags of all atoms (gathered)
   std::vector<char> active_all_;
   bool active_pairs_only_ = false;    // individual timesteps: see compute()
   std::vector<int> active_mine_;      // this rank's active atoms (eval)

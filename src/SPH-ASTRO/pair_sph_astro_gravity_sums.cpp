@@ -82,11 +82,12 @@ void PairSPHAstroGravity::gather_all()
   }
   gather_counts_ = counts;
   gather_displs_ = displs;
-  const char *active = sph_ ? sph_->active_flags() : nullptr;
-  if (active) {
+  if (!active_.all()) {
+    std::vector<char> active(nlocal);
+    for (int i = 0; i < nlocal; i++) active[i] = active_.active(i, atom->mask) ? 1 : 0;
     active_all_.resize(ntotal);
-    MPI_Allgatherv(active, nlocal, MPI_CHAR, active_all_.data(), counts.data(), displs.data(),
-                   MPI_CHAR, world);
+    MPI_Allgatherv(active.data(), nlocal, MPI_CHAR, active_all_.data(), counts.data(),
+                   displs.data(), MPI_CHAR, world);
   }
 }
 
@@ -123,8 +124,10 @@ void PairSPHAstroGravity::compute_zeta()
     else
       zeta_[i] = -h[i] / (3.0 * rho[i]) * sums[i];
   }
-  // zeta/Omega of the partners
-  if (split_ == Split::NONE) {
+  // zeta/Omega of the partners (the tree sends the owned atoms' values itself)
+  if (split_ == Split::TREE) {
+    for (int i = 0; i < nlocal; i++) zeta_over_omega_[i] = zeta_[i] / omega[i];
+  } else if (split_ == Split::NONE) {
     for (int i = nlocal; i < nlocal + atom->nghost; i++) zeta_[i] = 0.0;
     std::vector<double> mine(nlocal);
     for (int i = 0; i < nlocal; i++) mine[i] = zeta_[i] / omega[i];

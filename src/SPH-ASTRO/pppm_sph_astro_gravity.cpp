@@ -19,7 +19,6 @@
 #include "pppm_sph_astro_gravity.h"
 
 #include "sph_astro_gravity_kspace.h"
-#include "sph_astro_individual_steps.h"
 
 #include "domain.h"
 #include "error.h"
@@ -45,6 +44,7 @@ void PPPMSPHAstroGravity::settings(int narg, char **arg)
 
 void PPPMSPHAstroGravity::init()
 {
+  schedule_ = nullptr;    // fix sph/astro longrange sync sets it at its init, after this
   if (domain->nonperiodic)
     error->all(FLERR,
                "{}: boundary {} is not periodic in x, y and z; PPPM needs boundary p p p (for "
@@ -65,7 +65,7 @@ void PPPMSPHAstroGravity::compute(int eflag, int vflag)
 {
   // fix sph/astro longrange sync: the forces only where every particle ends its step, kept
   // apart; in between only the energy and virial when asked for (its forces are taken back)
-  IndividualSteps *split = long_range_split(lmp);
+  LongRangeSchedule *split = schedule_;
   const bool energy_only = split && !split->long_range_due();
   if (energy_only && !eflag && !vflag) return;
   // masses may change (per-atom masses, atoms added or lost): refresh q, sum m and sum m^2

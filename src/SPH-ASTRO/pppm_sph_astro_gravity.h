@@ -19,18 +19,25 @@ KSpaceStyle(pppm/sph/astro/gravity,PPPMSPHAstroGravity);
 #define LMP_PPPM_SPH_ASTRO_GRAVITY_H
 
 #include "pppm.h"
+#include "sph_astro_active_set.h"
 
 namespace LAMMPS_NS {
 
-class PPPMSPHAstroGravity : public PPPM {
+class PPPMSPHAstroGravity : public PPPM, public SPHAstro::LongRangeClient {
  public:
   PPPMSPHAstroGravity(class LAMMPS *);
   void settings(int, char **) override;
   void init() override;
   void compute(int, int) override;
+  // fix sph/astro longrange sync: compute where every particle ends its step (null: always)
+  void set_long_range_schedule(SPHAstro::LongRangeSchedule *schedule) override
+  {
+    schedule_ = schedule;
+  }
 
  protected:
   double G_;
+  SPHAstro::LongRangeSchedule *schedule_ = nullptr;
 };
 
 }    // namespace LAMMPS_NS

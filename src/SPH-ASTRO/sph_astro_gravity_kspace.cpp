@@ -11,8 +11,6 @@
 
 #include "sph_astro_gravity_kspace.h"
 
-#include "fix_sph_astro.h"
-
 #include "atom.h"
 #include "comm.h"
 #include "domain.h"
@@ -43,16 +41,6 @@ void ensure_mass_charge(LAMMPS *lmp, const char *caller)
     return;
   }
   lmp->modify->add_fix(std::string(GRAVITY_Q_FIX_ID) + " all property/atom q ghost yes");
-}
-
-IndividualSteps *long_range_split(LAMMPS *lmp)
-{
-  for (Fix *fix : lmp->modify->get_fix_list())
-    if (strcmp(fix->style, "sph/astro") == 0) {
-      auto *integrator = dynamic_cast<FixSPHAstro *>(fix);
-      return integrator ? integrator->long_range_split() : nullptr;
-    }
-  return nullptr;
 }
 
 void masses_to_charges(LAMMPS *lmp)

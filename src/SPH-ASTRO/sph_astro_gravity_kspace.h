@@ -36,8 +36,6 @@ class Force;
 
 namespace SPHAstro {
 
-class IndividualSteps;
-
 constexpr const char *GRAVITY_Q_FIX_ID = "SPH_ASTRO_GRAVITY_Q";
 
 // add q as a custom property if the atom style has none; caller names the command
@@ -51,10 +49,6 @@ double gravity_constant(LAMMPS_NS::LAMMPS *lmp, const char *caller);
 
 // F_ref = G M m_mean / V^(2/3) (G if there are no atoms)
 double gravity_reference_force(LAMMPS_NS::LAMMPS *lmp, double G);
-
-// fix sph/astro longrange sync: its hierarchy, which says at which steps the solver computes
-// (IndividualSteps::long_range_due) and keeps its forces apart; nullptr: compute at every step
-IndividualSteps *long_range_split(LAMMPS_NS::LAMMPS *lmp);
 
 // the box's boundary command, e.g. "p p f" or "ss mm f"
 std::string boundary_string(LAMMPS_NS::LAMMPS *lmp);

@@ -60,6 +60,7 @@
 
 #include "atom.h"
 #include "pointers.h"
+#include "sph_astro_active_set.h"
 #include "sph_astro_state.h"
 
 #include <string>
@@ -74,7 +75,7 @@ namespace SPHAstro {
 
 struct PairOptions;
 
-class IndividualSteps : protected LAMMPS_NS::Pointers {
+class IndividualSteps : protected LAMMPS_NS::Pointers, public LongRangeSchedule {
  public:
   // per atom: the times pair_impulses() reads (begin, end, woken, end_then); sums_: impulses
   // and u kick (SUM_KICKS), with the forces the next SUM_KICKS: sum_j F_ij and du/dt; extra_
@@ -116,6 +117,8 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   // the active particles of this step (after reneighbouring), told to pair sph/astro
   void pre_force(LAMMPS_NS::PairSPHAstro *pair);
   bool active(int i) const { return active_[i] != 0; }
+  // the flags of owned and ghost atoms (from setup_pre_force or pre_force to the step's end)
+  const char *active_flags() const { return active_.data(); }
   // owned atom i was evaluated at this step (its step ends with it); dt: its step's length
   bool own_step(int i, double &dt) const
   {
@@ -154,13 +157,13 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   bool long_range_split() const { return long_range_; }
   // does the kspace solver compute its forces in this step's evaluation (every particle ends
   // its step with it)
-  bool long_range_due() const { return long_due_; }
+  bool long_range_due() const override { return long_due_; }
   // the kspace solver around its evaluation: the forces before it, then a_long = (f - those) / m;
   // split_scale: r_s
-  void long_range_before();
-  void long_range_after(double split_scale);
+  void long_range_before() override;
+  void long_range_after(double split_scale) override;
   // ... or the forces before it back (an evaluation for the energy alone)
-  void long_range_discard();
+  void long_range_discard() override;
   // a_long of owned atom i at the last synchronisation point (zeros without longrange sync)
   const double *long_range_acceleration(int i) const
   {
