@@ -28,6 +28,7 @@
 #include "pair_sph_astro_gravity.h"
 #include "pppm_sph_astro_gravity.h"
 #include "sph_astro_state_command.h"
+#include "tree_sph_astro_gravity.h"
 
 using namespace LAMMPS_NS;
 
@@ -49,6 +50,11 @@ static KSpace *pppm_sph_astro_gravity_creator(LAMMPS *lmp)
 static KSpace *msm_sph_astro_gravity_creator(LAMMPS *lmp)
 {
   return new MSMSPHAstroGravity(lmp);
+}
+
+static KSpace *tree_sph_astro_gravity_creator(LAMMPS *lmp)
+{
+  return new TreeSPHAstroGravity(lmp);
 }
 
 static Compute *compute_sph_astro_gravity_direct_creator(LAMMPS *lmp, int narg, char **arg)
@@ -127,6 +133,11 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "msm/sph/astro/gravity";
   plugin.info = "SPH-ASTRO long-range self-gravity, MSM (open boundaries)";
   plugin.creator.v1 = (lammpsplugin_factory1 *) &msm_sph_astro_gravity_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.name = "tree/sph/astro/gravity";
+  plugin.info = "SPH-ASTRO self-gravity on a quadrupole tree (open boundaries)";
+  plugin.creator.v1 = (lammpsplugin_factory1 *) &tree_sph_astro_gravity_creator;
   (*register_plugin)(&plugin, lmp);
 
   plugin.style = "fix";
