@@ -48,6 +48,11 @@ class TreeSPHAstroGravity : public KSpace, public SPHAstro::ActiveSetClient {
     int depth = 0;
   };
   const Statistics &last_evaluation() const { return last_; }
+  // this rank's mean targets per evaluation since the run began
+  double targets_per_evaluation() const
+  {
+    return evaluations_ > 0.0 ? target_sum_ / evaluations_ : 0.0;
+  }
 
  protected:
   SPHAstro::OpeningCriterion crit_;
