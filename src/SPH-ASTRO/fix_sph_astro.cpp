@@ -693,7 +693,19 @@ void FixSPHAstro::next_timestep(bool from_end_of_step)
     error->all(FLERR, "fix sph/astro: timestep {} at step {} is not positive and finite", dt,
                update->ntimestep);
   }
+  check_time_after(dt);
   set_timestep(dt);
+}
+
+void FixSPHAstro::check_time_after(double dt) const
+{
+  const double now = current_time();
+  if (std::isfinite(now + dt)) return;
+  error->all(FLERR,
+             "fix sph/astro: the simulation time {} plus the next timestep {} is not finite at "
+             "step {} (no particle's criteria limit the step; {}): set a smaller dtmax",
+             now, dt, update->ntimestep,
+             dtmax_ > 0.0 ? fmt::format("dtmax = {}", dtmax_) : std::string("no dtmax is set"));
 }
 
 void FixSPHAstro::set_timestep(double dt)
@@ -759,6 +771,7 @@ void FixSPHAstro::next_individual_timestep()
   if (!(dt > 0.0) || !std::isfinite(dt))
     error->all(FLERR, "fix sph/astro: timestep {} at step {} is not positive and finite", dt,
                update->ntimestep);
+  check_time_after(dt);
   // thermo at the step that reaches tend (on the time line's grid)
   if (tend_ > 0.0 && current_time() + dt >= tend_ * (1.0 - 1e-12))
     schedule_output(update->ntimestep + 1);

@@ -163,6 +163,8 @@ class FixSPHAstro : public Fix {
   void next_timestep(bool from_end_of_step = false);
   void set_timestep(double dt);
   double current_time() const;
+  // the simulation time after a step of dt must be finite (an error naming dtmax otherwise)
+  void check_time_after(double dt) const;
   void schedule_output(bigint step);
 };
 
