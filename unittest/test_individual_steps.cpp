@@ -582,3 +582,24 @@ TEST(IndividualSteps, OptionsItDoesNotCarryAreRefused)
   commands(lmp, {"compute bins all sph/astro/atom bin"});
   EXPECT_NE(error_of(lmp, "run 0").find("there are no time bins"), std::string::npos);
 }
+
+// the bins of a run with individual steps stay in fix SPH_ASTRO_STEPS when fix sph/astro is
+// defined again (or unfixed and defined again) with global steps; they are no longer the
+// particles' steps: compute sph/astro/atom bin is refused as without individual steps
+TEST(IndividualSteps, BinsAfterSwitchingToGlobalStepsAreRefused)
+{
+  for (const bool unfix : {false, true}) {
+    auto lmp = open_lammps();
+    hot_spot(lmp, 3, "sph/astro courant 0.3 steps individual");
+    commands(lmp, {"compute bins all sph/astro/atom bin", "run 5"});
+    if (unfix)
+      commands(lmp, {"unfix hvar", "unfix gas", "fix gas all sph/astro courant 0.3"});
+    else
+      commands(lmp, {"fix gas all sph/astro courant 0.3"});
+    const std::string message = error_of(lmp, "run 0");
+    EXPECT_NE(message.find("compute sph/astro/atom bin: there are no time bins; they belong to "
+                           "fix sph/astro steps individual"),
+              std::string::npos)
+        << message;
+  }
+}

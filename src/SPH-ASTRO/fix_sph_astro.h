@@ -72,6 +72,9 @@ class FixSPHAstro : public Fix {
   // of its step; d2_vest and d_uest hold them at the current time)
   bool mid_step(int i) const;
 
+  // steps individual: the particles' bins and steps (fix SPH_ASTRO_STEPS) are this fix's
+  bool individual_steps() const { return steps_ != nullptr; }
+
   // longrange sync: the hierarchy the kspace gravity solvers ask whether to compute (nullptr:
   // at every step)
   SPHAstro::IndividualSteps *long_range_split() const
