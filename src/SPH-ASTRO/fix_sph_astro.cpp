@@ -26,6 +26,7 @@
 #include "fix_sph_astro.h"
 
 #include "fix_sph_astro_h.h"
+#include "msm_sph_astro_gravity.h"
 #include "pair_sph_astro.h"
 
 #include "atom.h"
@@ -60,8 +61,10 @@ using namespace FixConst;
 using namespace SPHAstro;
 
 // the reference-energy count of a restart record is raised by these when the shrink-wrap
-// padding (3 values) and an individual-step block follow
-static constexpr int STEP_BLOCK = 1 << 20, PADDING_BLOCK = 1 << 21;
+// padding (3 values), the time (RestartTime), the state of msm/sph/astro/gravity and an
+// individual-step block follow
+static constexpr int STEP_BLOCK = 1 << 20, PADDING_BLOCK = 1 << 21, TIME_BLOCK = 1 << 22,
+                     KSPACE_BLOCK = 1 << 23;
 
 FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), state_(new StateIndex()), entropy_index_(new EntropyIndex()),
@@ -311,6 +314,7 @@ void FixSPHAstro::init()
                "fix sph/astro: only one instance is allowed (it sets the global timestep); use "
                "one fix for all SPH particles");
   sentinel_->check_setting(this, adaptive_);
+  restart_time_.restore(update);    // (as Integrate::init() left it: sph_astro_restart_time.h)
 
   // predictions are kept only when they belong to this step and v and u (and rho) are as the
   // last run left them (a continued or restarted run); after `velocity` or `set` they start
@@ -579,6 +583,7 @@ void FixSPHAstro::post_run()
   // a fixed step shortened to land on tend is the user's step again
   if (!adaptive_ && update->dt != user_dt_) set_timestep(user_dt_);
   state_hash_ = state_hash(lmp, *state_, pair_has_continuity());
+  restart_time_.take(update);    // (a next run continues this time: sph_astro_restart_time.h)
 }
 
 // make thermo (and the computes it needs) report the step that reaches tend. All computes
@@ -836,16 +841,23 @@ void FixSPHAstro::write_restart(FILE *fp)
   // restart files written during a run (restart command) need the hash of this step
   state_hash_ = state_hash(lmp, *state_, pair_has_continuity());
   if (comm->me != 0) return;
+  auto *msm = dynamic_cast<MSMSPHAstroGravity *>(force->kspace);
   std::vector<double> list = {
       static_cast<double>(predicted_step_), static_cast<double>(state_hash_ >> 32),
       static_cast<double>(state_hash_ & 0xffffffffULL),
-      static_cast<double>(reference_energy_.size() + (steps_ ? STEP_BLOCK : 0) + PADDING_BLOCK)};
+      static_cast<double>(reference_energy_.size() + (steps_ ? STEP_BLOCK : 0) + PADDING_BLOCK +
+                          TIME_BLOCK + (msm ? KSPACE_BLOCK : 0))};
   for (const auto &[id, energy] : reference_energy_) {
     list.push_back(static_cast<double>(id.size()));
     for (char c : id) list.push_back(static_cast<double>(c));
     list.push_back(energy);
   }
   for (int d = 0; d < 3; d++) list.push_back(DomainPadding::of(domain)[d]);
+  RestartTime::write(update, list);
+  if (msm) {
+    list.resize(list.size() + MSMSPHAstroGravity::CONTINUATION_VALUES);
+    msm->continuation_state(&list[list.size() - MSMSPHAstroGravity::CONTINUATION_VALUES]);
+  }
   if (steps_) steps_->write_restart(list);
   int size = static_cast<int>(list.size() * sizeof(double));
   fwrite(&size, sizeof(int), 1, fp);
@@ -871,6 +883,11 @@ void FixSPHAstro::restart(char *buf)
     reference_energy_[id] = list[n++];
   }
   if (count & PADDING_BLOCK) n += restore_shrink_wrap_padding(domain, list + n);
+  if (count & TIME_BLOCK) n += restart_time_.read(list + n);
+  if (count & KSPACE_BLOCK) {
+    kspace_state_.assign(list + n, list + n + MSMSPHAstroGravity::CONTINUATION_VALUES);
+    n += MSMSPHAstroGravity::CONTINUATION_VALUES;
+  }
   // a hierarchy of individual steps continues where it was (if this fix steps individually)
   if ((count & STEP_BLOCK) && steps_) steps_->read_restart(list + n);
 }

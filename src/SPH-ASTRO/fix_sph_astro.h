@@ -15,6 +15,7 @@ FixStyle(sph/astro,FixSPHAstro);
 #define LMP_FIX_SPH_ASTRO_H
 
 #include "fix.h"
+#include "sph_astro_restart_time.h"
 
 #include <cstdint>
 #include <map>
@@ -86,6 +87,10 @@ class FixSPHAstro : public Fix {
   // infinite where none applies), at its latest force evaluation
   double own_timestep(int i) const;
 
+  // kspace_style msm/sph/astro/gravity: the split radius and grid of the run that wrote the
+  // restart file read (empty if none)
+  const std::vector<double> &kspace_restart_state() const { return kspace_state_; }
+
   // reference total energy of a compute sph/astro/global (by compute ID): set at its first
   // evaluation, kept across restarts
   double reference_energy(const std::string &compute_id, double current);
@@ -128,6 +133,10 @@ class FixSPHAstro : public Fix {
   uint64_t state_hash_ = 0;       // hash of v and u (and rho with density continuity) when
                                   // the last run ended
   std::map<std::string, double> reference_energy_;
+  // the simulation time at the last run's end or of the restart file read (put back at init:
+  // sph_astro_restart_time.h)
+  SPHAstro::RestartTime restart_time_;
+  std::vector<double> kspace_state_;
   bool dt_pending_ = false;    // first dt of a run: set once all setup forces are in
   double user_dt_ = 0.0;       // with dt fixed: the step to restore after a tend clip
 

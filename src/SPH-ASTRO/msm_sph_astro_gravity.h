@@ -30,9 +30,15 @@ class MSMSPHAstroGravity : public MSM {
   void setup() override;
   void compute(int, int) override;
 
+  // the split radius and grid in use, for a run that continues this one (fix sph/astro's
+  // restart record): step, cutoff, the finest grid's points (3), the spacing kept (3)
+  static constexpr int CONTINUATION_VALUES = 8;
+  void continuation_state(double *values) const;
+
  protected:
   double G_;
   double spacing_[3] = {0.0, 0.0, 0.0};    // finest grid spacing of the run start (0: none)
+  bigint last_step_ = -1;                  // the step of the last evaluation (-1: none)
 
   void refine_grid_to_box();
   void set_grid_local_corners();
