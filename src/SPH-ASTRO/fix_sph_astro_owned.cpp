@@ -46,8 +46,10 @@ char **owned_arguments(LAMMPS *lmp, int narg, char **arg)
       continue;
     }
     if (strcmp(a, "writedata") == 0) {
-      if (!next || !utils::strmatch(next, "^(yes|no|on|off|true|false)$"))
-        lmp->error->all(FLERR, "fix sph/astro/owned: writedata needs yes or no; {}", got);
+      bool known = false;
+      for (const char *flag : {"yes", "no", "on", "off", "true", "false"})
+        known = known || (next && strcmp(next, flag) == 0);
+      if (!known) lmp->error->all(FLERR, "fix sph/astro/owned: writedata needs yes or no; {}", got);
       iarg++;
       continue;
     }
