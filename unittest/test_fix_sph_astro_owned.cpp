@@ -228,4 +228,7 @@ TEST_F(BadInputTest, OwnedPropertyArguments)
                "fix sph/astro/owned: writedata needs yes or no; nothing follows it");
   expect_error("fix p all sph/astro/owned d_a writedata d_b",
                "fix sph/astro/owned: writedata needs yes or no; got 'd_b'");
+  for (const char *flag : {"yes", "no"})
+    EXPECT_EQ(error_of(lmp, std::string("fix p all sph/astro/owned d_a d2_b 3 writedata ") + flag),
+              "");
 }

@@ -179,7 +179,9 @@ void ensure_step_state(LAMMPS *lmp, const char *caller)
                       "{}: a custom per-atom property d_{} already exists outside fix {}; "
                       "SPH-ASTRO owns the names d_step_*",
                       caller, name, STEPS_FIX_ID);
-  // (owned atoms only: no ghost reads the step state, and a ghost costs it no memory)
+  // (owned atoms only: no ghost reads the step state, and a ghost costs it no memory; not in
+  // data files: without the time line, which a data file cannot hold, the state means nothing,
+  // and its 53 values per atom make lines longer than read_data reads)
   lmp->modify->add_fix(std::string(STEPS_FIX_ID) +
                        " all sph/astro/owned d_step_begin d_step_end d_step_bin d_step_woken "
                        "d_step_end_then d2_step_accel 3 "
@@ -188,7 +190,7 @@ void ensure_step_state(LAMMPS *lmp, const char *caller)
                        "d_step_lead_u d_step_dudt_other d_step_pending_next d_step_dphidh "
                        "d2_step_pending " +
                        std::to_string(PENDING_SLOTS * PENDING_VALUES) + " d2_step_recent " +
-                       std::to_string(RECENT_VALUES));
+                       std::to_string(RECENT_VALUES) + " writedata no");
 }
 
 // XOR over atoms of a mixed 64-bit value (the splitmix64 finaliser)
@@ -237,8 +239,9 @@ void ensure_long_range_state(LAMMPS *lmp, const char *caller)
                     "{}: a custom per-atom property d2_step_accel_long already exists outside "
                     "fix {}; SPH-ASTRO owns the names d_step_*",
                     caller, LONG_RANGE_FIX_ID);
+  // (not in data files either: it belongs to the time line of the steps)
   lmp->modify->add_fix(std::string(LONG_RANGE_FIX_ID) +
-                       " all sph/astro/owned d2_step_accel_long 3");
+                       " all sph/astro/owned d2_step_accel_long 3 writedata no");
 }
 
 int find_long_range_state(LAMMPS *lmp)
