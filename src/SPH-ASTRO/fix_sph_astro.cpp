@@ -71,6 +71,7 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
     continuity_index_(new ContinuityIndex()), sentinel_(new StabilitySentinel(lmp))
 {
   bool individual = false;
+  std::map<std::string, std::string> given;    // the keywords given, with their last value
 
   time_integrate = 1;
   restart_global = 1;
@@ -186,6 +187,7 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
           "conduction, conductivity, xsph, dtmax, dtmin, tend, dt, steps, limiter, "
           "kicks, longrange, longdisplacement, sentinel, collapse, hshare",
           key);
+    given[key] = val;
     iarg += 2;
   }
   if (atom->rho_flag || atom->esph_flag)
@@ -201,6 +203,27 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR,
                "fix sph/astro: longrange sync needs steps individual (with global steps every "
                "step is a synchronisation point)");
+  // keywords that would do nothing, and a limiter off, under which a blast runs into sleeping
+  // gas (Saitoh & Makino 2009, ApJ 697, L99): its energy goes wrong
+  if (comm->me == 0) {
+    for (const char *key : {"limiter", "kicks"})
+      if (!individual && given.count(key))
+        error->warning(FLERR,
+                       "fix sph/astro: {} {} is ignored with steps global (every particle takes "
+                       "the global leapfrog's step; it applies to steps individual)",
+                       key, given[key]);
+    if (given.count("longdisplacement") && !long_range_sync_)
+      error->warning(FLERR,
+                     "fix sph/astro: longdisplacement {} is ignored without longrange sync (it "
+                     "bounds the displacement between the long-range evaluations of sync)",
+                     given["longdisplacement"]);
+    if (individual && limiter_levels_ == 0)
+      error->warning(FLERR,
+                     "fix sph/astro: limiter off with steps individual: a shock or blast that "
+                     "reaches particles on long steps is not felt by them until their steps end, "
+                     "and the energy is not conserved (a hot spot in cold gas lost 28 % of its "
+                     "energy in 200 steps); use limiter 1 or 2 where gas is heated fast");
+  }
   if (individual) {
     if (!adaptive_)
       error->all(FLERR,
@@ -577,7 +600,8 @@ std::string FixSPHAstro::limits() const
 void FixSPHAstro::post_run()
 {
   if (steps_) steps_->log_summary();                // the hierarchy's figures and its bins
-  if (sync_energy_) sync_energy_->log_summary();    // its energy at synchronisation points
+  if (sync_energy_ && steps_->started())    // its energy at synchronisation points
+    sync_energy_->log_summary(steps_->dt_max());
   // a stop at tend ends this run only; later runs get the user's timeout back
   if (stopped_at_tend_) timer->reset_timeout();
   // a fixed step shortened to land on tend is the user's step again
