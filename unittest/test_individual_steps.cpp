@@ -313,16 +313,17 @@ TEST(IndividualSteps, EnergyErrorWithoutASynchronisationPointIsNotAReading)
   EXPECT_NE(text.find("fix sph/astro: limiter off with steps individual"), std::string::npos);
   std::remove(log.c_str());
   for (const auto &[keywords, warning] :
-       {std::pair<std::string, std::string>{"limiter 2", "fix sph/astro: limiter 2 is ignored "
-                                                         "with steps global"},
+       {std::pair<std::string, std::string>{"limiter 2",
+                                            "fix sph/astro: limiter 2 is ignored "
+                                            "with steps global"},
         {"kicks particle", "fix sph/astro: kicks particle is ignored with steps global"},
         {"steps individual longdisplacement 0.05",
          "fix sph/astro: longdisplacement 0.05 is ignored without longrange sync"}}) {
     auto lmp = open_lammps();
-    commands(lmp, {"log " + log, "units lj", "atom_style atomic", "lattice fcc 4.0",
-                   "region box block 0 2 0 2 0 2", "create_box 1 box",
-                   "pair_style " + std::string(PAIR), "fix gas all sph/astro " + keywords,
-                   "log none"});
+    commands(lmp,
+             {"log " + log, "units lj", "atom_style atomic", "lattice fcc 4.0",
+              "region box block 0 2 0 2 0 2", "create_box 1 box", "pair_style " + std::string(PAIR),
+              "fix gas all sph/astro " + keywords, "log none"});
     std::ifstream file(log);
     const std::string logged((std::istreambuf_iterator<char>(file)),
                              std::istreambuf_iterator<char>());

@@ -599,7 +599,7 @@ std::string FixSPHAstro::limits() const
 
 void FixSPHAstro::post_run()
 {
-  if (steps_) steps_->log_summary();                // the hierarchy's figures and its bins
+  if (steps_) steps_->log_summary();        // the hierarchy's figures and its bins
   if (sync_energy_ && steps_->started())    // its energy at synchronisation points
     sync_energy_->log_summary(steps_->dt_max());
   // a stop at tend ends this run only; later runs get the user's timeout back

@@ -100,8 +100,7 @@ void SyncEnergy::log_summary(double dt_max) const
                    "the predictions of the particles inside their steps). Every particle ends "
                    "a step at each multiple of dt_max = {:.6g} of the time line; dtmax or tend "
                    "gives more such points\n",
-                   reference_step_ >= 0 ? fmt::format(" (step {})", reference_step_) : "",
-                   dt_max);
+                   reference_step_ >= 0 ? fmt::format(" (step {})", reference_step_) : "", dt_max);
 }
 
 }    // namespace SPHAstro

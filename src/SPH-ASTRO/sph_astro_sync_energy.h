@@ -52,10 +52,10 @@ class SyncEnergy : protected LAMMPS_NS::Pointers {
   // E = sum_i m_i (v_i^2 / 2 + e(rho_i, u_i)) + W over the group at this step; NaN where the
   // potential energy was not tallied at it (collective)
   double total(int groupbit, const EOS &eos, const StateIndex &state);
-  double latest_ = NAN;             // error at the latest point after the one that set E0
-  double largest_ = NAN;            // largest |error| of this run's points
-  LAMMPS_NS::bigint points_ = 0;      // points of this run measured, the one that set E0 too
-  LAMMPS_NS::bigint readings_ = 0;    // ... after the one that set E0
+  double latest_ = NAN;                      // error at the latest point after the one that set E0
+  double largest_ = NAN;                     // largest |error| of this run's points
+  LAMMPS_NS::bigint points_ = 0;             // points of this run measured, the one that set E0 too
+  LAMMPS_NS::bigint readings_ = 0;           // ... after the one that set E0
   LAMMPS_NS::bigint reference_step_ = -1;    // the step that set E0 (-1: another instance's)
 };
 
