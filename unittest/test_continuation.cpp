@@ -17,7 +17,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <functional>
+#include <iterator>
 #include <map>
 
 using namespace sph_astro_test;
@@ -414,3 +416,103 @@ INSTANTIATE_TEST_SUITE_P(Families, Continuation, ::testing::ValuesIn(families())
                          [](const auto &info) {
                            return std::string(info.param.name);
                          });
+
+// fix sph/astro defined again (or unfixed and defined again) after a run with individual steps
+// that ended inside particles' steps: their v and u are those of the middle of their steps, and
+// the fix that goes hands over their state at the current time (the predictions, as compute
+// sph/astro/global reads them), so the run that follows starts from the energy the compute
+// read, and the compute keeps its reference energy E0 (a new fix took v of the middle of the
+// steps for the current ones: kinetic energy 0.1 % lower here, and the energy error read 0)
+TEST(Redefinition, AfterIndividualStepsKeepsTheStateAndTheReference)
+{
+  for (const std::string how : {"again", "unfix", "global"}) {
+    auto lmp = open_lammps();
+    hot_spot(lmp, 4, PAIR, "sph/astro courant 0.3 steps individual", 2000.0);
+    commands(lmp, {"fix hvar all sph/astro/h iterate hfact 1.2", "run 41"});
+    ASSERT_LT(lmp->modify->get_fix_by_id("gas")->compute_vector(4), lmp->atom->natoms);
+    const auto before = global_vector(lmp, "sum", 12);
+    ASSERT_GT(std::fabs(before[DEREL]), 1e-6);
+    if (how == "unfix") commands(lmp, {"unfix hvar", "unfix gas"});
+    commands(lmp,
+             {std::string("fix gas all sph/astro courant 0.3") +
+              (how == "global" ? "" : " steps individual")});
+    if (how == "unfix") commands(lmp, {"fix hvar all sph/astro/h iterate hfact 1.2"});
+    commands(lmp, {"run 0"});
+    const auto after = global_vector(lmp, "sum", 12);
+    std::printf("%s: kinetic energy %.10g against %.10g, energy error %.6g against %.6g\n",
+                how.c_str(), after[EKIN], before[EKIN], after[DEREL], before[DEREL]);
+    EXPECT_NEAR(after[EKIN], before[EKIN], 1e-12 * before[EKIN]) << how;
+    EXPECT_NEAR(after[ETHERM], before[ETHERM], 1e-12 * before[ETHERM]) << how;
+    EXPECT_NEAR(after[DEREL], before[DEREL], 1e-12) << how;
+  }
+  // v set after the run is the user's: the fix that goes hands over nothing
+  auto lmp = open_lammps();
+  hot_spot(lmp, 4, PAIR, "sph/astro courant 0.3 steps individual", 2000.0);
+  commands(lmp,
+           {"fix hvar all sph/astro/h iterate hfact 1.2", "run 41", "velocity all set 0.25 0 0",
+            "fix gas all sph/astro courant 0.3"});
+  for (const auto &[id, vx] : per_atom(lmp, "v", 0)) EXPECT_EQ(vx, 0.25) << "atom " << id;
+}
+
+// v or u changed between two runs (velocity, set): the reference energy E0 of compute
+// sph/astro/global's relative energy error is reset at the next evaluation, which the log
+// says; the error then measures the integration from the new state (the change was read as
+// an energy error: 11 % here). With the state unchanged E0 is kept, also with fix sph/astro
+// defined again and after a restart
+TEST(Redefinition, StateChangedBetweenRunsResetsTheReference)
+{
+  const std::string log = "test_continuation_reference.log";
+  for (const std::string steps : {"global", "individual"}) {
+    auto lmp = open_lammps();
+    hot_spot(lmp, 3, PAIR, "sph/astro courant 0.3 steps " + steps, 20.0);
+    commands(lmp, {"log " + log, "run 20"});
+    const auto before = global_vector(lmp, "sum", 12);
+    commands(lmp, {"run 0"});
+    EXPECT_EQ(global_vector(lmp, "sum", 12)[DEREL], before[DEREL]) << steps;
+    commands(lmp, {"velocity all set 0.5 0 0 sum yes", "run 0"});
+    const auto after = global_vector(lmp, "sum", 12);
+    std::printf("%s steps: energy error %g before the velocity command, %g after\n", steps.c_str(),
+                before[DEREL], after[DEREL]);
+    EXPECT_GT(after[EKIN], 1.05 * before[EKIN]) << steps;
+    EXPECT_EQ(after[DEREL], 0.0) << steps;
+    // fix sph/astro defined anew (it knows no state of a last run): the compute's record of the
+    // state it read at the end of the run
+    commands(lmp,
+             {"run 5", "unfix gas", "fix gas all sph/astro courant 0.3 steps " + steps, "run 0"});
+    const double kept = global_vector(lmp, "sum", 12)[DEREL];
+    EXPECT_NE(kept, 0.0) << steps;
+    commands(lmp,
+             {"unfix gas", "fix gas all sph/astro courant 0.3 steps " + steps,
+              "velocity all set 0 0.5 0 sum yes", "run 0"});
+    EXPECT_EQ(global_vector(lmp, "sum", 12)[DEREL], 0.0) << steps;
+    // a restart file: E0 comes back with it, and is reset after a change of v
+    const std::string restart = "test_continuation_reference.restart";
+    commands(lmp, {"run 5", "write_restart " + restart, "log none"});
+    const double written = global_vector(lmp, "sum", 12)[DEREL];
+    {
+      std::ifstream in(log);
+      const std::string text((std::istreambuf_iterator<char>(in)),
+                             std::istreambuf_iterator<char>());
+      EXPECT_NE(text.find("compute sph/astro/global sum: the reference energy E0 is reset"),
+                std::string::npos)
+          << text;
+    }
+    std::remove(log.c_str());
+    lmp.reset();    // (one instance at a time: the plugin is loaded for the process)
+    for (const bool velocity : {false, true}) {
+      auto again = open_lammps();
+      commands(again,
+               {"read_restart " + restart, "fix gas all sph/astro courant 0.3 steps " + steps,
+                neighbour_lines(), "compute sum all sph/astro/global",
+                "thermo_style custom step c_sum[11]"});
+      if (velocity) commands(again, {"velocity all set 0 0 0.5 sum yes"});
+      commands(again, {"run 0"});
+      const double read = global_vector(again, "sum", 12)[DEREL];
+      if (velocity)
+        EXPECT_EQ(read, 0.0) << steps;
+      else
+        EXPECT_NEAR(read, written, 1e-12) << steps;
+    }
+    std::remove(restart.c_str());
+  }
+}

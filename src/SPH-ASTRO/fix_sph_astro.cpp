@@ -254,6 +254,8 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
 FixSPHAstro::~FixSPHAstro()
 {
   memory->destroy(xsph_);
+  // (the particles inside their steps: to the current time, if unchanged since the last run)
+  if (steps_ && steps_local_hash_taken_) steps_->hand_over(steps_local_hash_);
   delete steps_;
   delete sync_energy_;
   delete sentinel_;
@@ -344,6 +346,17 @@ void FixSPHAstro::init()
   // anew
   const bool unchanged = state_hash(lmp, *state_, pair_has_continuity()) == state_hash_;
   if (!unchanged) entropy_needs_init_ = true;    // A follows from the new u at the next density
+  // the reference energies refer to the state the last run (or the restart file) left: after a
+  // change of v or u (velocity, set) they are set anew
+  state_changed_ = hash_taken_ ? (unchanged ? 0 : 1) : -1;
+  if (state_changed_ == 1 && !reference_energy_.empty()) {
+    reference_energy_.clear();
+    if (comm->me == 0)
+      utils::logmesg(lmp,
+                     "fix sph/astro: v or u changed since the last run or restart file (velocity, "
+                     "set, ...): the reference energies E0 of compute sph/astro/global and of the "
+                     "synchronisation points are set anew\n");
+  }
   pair_->schedule_initialisation(entropy_ && entropy_needs_init_,
                                  continuity_ && density_needs_init_);
   if (steps_) {
@@ -601,12 +614,17 @@ void FixSPHAstro::post_run()
 {
   if (steps_) steps_->log_summary();        // the hierarchy's figures and its bins
   if (sync_energy_ && steps_->started())    // its energy at synchronisation points
-    sync_energy_->log_summary(steps_->dt_max());
+    sync_energy_->log_summary(steps_->dt_max(), update->nsteps);
   // a stop at tend ends this run only; later runs get the user's timeout back
   if (stopped_at_tend_) timer->reset_timeout();
   // a fixed step shortened to land on tend is the user's step again
   if (!adaptive_ && update->dt != user_dt_) set_timestep(user_dt_);
   state_hash_ = state_hash(lmp, *state_, pair_has_continuity());
+  hash_taken_ = true;
+  if (steps_) {
+    steps_local_hash_ = steps_->local_hash();
+    steps_local_hash_taken_ = true;
+  }
   restart_time_.take(update);    // (a next run continues this time: sph_astro_restart_time.h)
 }
 
@@ -862,13 +880,14 @@ double FixSPHAstro::reference_energy(const std::string &compute_id, double curre
 // (length of ID, ID characters, energy) records, all stored as doubles
 void FixSPHAstro::write_restart(FILE *fp)
 {
-  // restart files written during a run (restart command) need the hash of this step
-  state_hash_ = state_hash(lmp, *state_, pair_has_continuity());
+  // restart files written during a run (restart command) need the hash of this step (this
+  // fix keeps that of the last run's end: v or u changed since are so after write_restart too)
+  const uint64_t hash = state_hash(lmp, *state_, pair_has_continuity());
   if (comm->me != 0) return;
   auto *msm = dynamic_cast<MSMSPHAstroGravity *>(force->kspace);
   std::vector<double> list = {
-      static_cast<double>(predicted_step_), static_cast<double>(state_hash_ >> 32),
-      static_cast<double>(state_hash_ & 0xffffffffULL),
+      static_cast<double>(predicted_step_), static_cast<double>(hash >> 32),
+      static_cast<double>(hash & 0xffffffffULL),
       static_cast<double>(reference_energy_.size() + (steps_ ? STEP_BLOCK : 0) + PADDING_BLOCK +
                           TIME_BLOCK + (msm ? KSPACE_BLOCK : 0))};
   for (const auto &[id, energy] : reference_energy_) {
@@ -897,6 +916,7 @@ void FixSPHAstro::restart(char *buf)
   predicted_step_ = static_cast<bigint>(list[n++]);
   state_hash_ = static_cast<uint64_t>(list[n++]) << 32;
   state_hash_ |= static_cast<uint64_t>(list[n++]);
+  hash_taken_ = true;
   const int count = static_cast<int>(list[n++]);
   const int nref = count & (STEP_BLOCK - 1);
   reference_energy_.clear();

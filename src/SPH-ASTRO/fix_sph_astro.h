@@ -94,6 +94,9 @@ class FixSPHAstro : public Fix {
   // reference total energy of a compute sph/astro/global (by compute ID): set at its first
   // evaluation, kept across restarts
   double reference_energy(const std::string &compute_id, double current);
+  // have v or u changed since the last run of this fix ended or its restart file was written
+  // (1), or not (0), or does it not know (-1: defined since); from its latest init()
+  int state_changed() const { return state_changed_; }
 
  protected:
   // C in dt = C h / v_sig with v_sig = max_j (c_i + c_j - beta w_ij) (vsig pairs, or signal
@@ -132,6 +135,12 @@ class FixSPHAstro : public Fix {
   bigint predicted_step_ = -1;    // step at which d2_vest/d_uest hold predictions
   uint64_t state_hash_ = 0;       // hash of v and u (and rho with density continuity) when
                                   // the last run ended
+  bool hash_taken_ = false;       // (by a run of this fix, or from a restart file)
+  // steps individual: this rank's part of the hash at the last run's end (for the hand-over of
+  // the particles inside their steps when this fix goes)
+  uint64_t steps_local_hash_ = 0;
+  bool steps_local_hash_taken_ = false;
+  int state_changed_ = -1;    // state_changed()
   std::map<std::string, double> reference_energy_;
   // the simulation time at the last run's end or of the restart file read (put back at init:
   // sph_astro_restart_time.h)

@@ -858,6 +858,36 @@ void IndividualSteps::unpack_reverse_comm(int n, const int *list, const double *
   });
 }
 
+std::uint64_t IndividualSteps::local_hash() const
+{
+  StateIndex state;
+  if (!find_state(lmp, state)) return 0;
+  const double *u = atom->dvector[state.u];
+  std::uint64_t hash = 0;
+  for (int i = 0; i < atom->nlocal; i++) hash ^= atom_state_hash(atom->tag[i], atom->v[i], u[i]);
+  return hash;
+}
+
+void IndividualSteps::hand_over(std::uint64_t last_local_hash)
+{
+  StepIndex steps;
+  StateIndex state;
+  if (!started_ || !find_step_state(lmp, steps) || !find_state(lmp, state)) return;
+  if (local_hash() != last_local_hash) return;
+  started_ = false;
+  const double *begin = atom->dvector[steps.begin];
+  const int *mask = atom->mask;
+  double **v = atom->v;
+  double **vest = atom->darray[state.vest];
+  double *u = atom->dvector[state.u];
+  const double *uest = atom->dvector[state.uest];
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & owner_->groupbit) || begin[i] == ti_now_) continue;
+    for (int d = 0; d < 3; d++) v[i][d] = vest[i][d];
+    u[i] = uest[i];
+  }
+}
+
 void IndividualSteps::write_restart(std::vector<double> &list) const
 {
   list.insert(list.end(),

@@ -62,6 +62,7 @@
 #include "pointers.h"
 #include "sph_astro_state.h"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -173,6 +174,16 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   void unpack_forward_comm(int n, int first, const double *buf);
   int pack_reverse_comm(int n, int first, double *buf);
   void unpack_reverse_comm(int n, const int *list, const double *buf);
+
+  // the hierarchy ends (its fix goes: unfix, or defined again): the particles inside their
+  // steps take their v and u at the current time, the predictions (as compute sph/astro/global
+  // reads them), so that what follows starts from that state; those at the end of a step have
+  // it. Only where the rank's atoms are as the last run left them (their local_hash(), taken
+  // then): v or u set since are the user's. No communication (a destructor calls it); finds the
+  // state by name, does nothing without it
+  void hand_over(std::uint64_t last_local_hash);
+  // XOR of atom_state_hash() over this rank's atoms (no communication)
+  std::uint64_t local_hash() const;
 
   void write_restart(std::vector<double> &list) const;
   // returns the number of values read

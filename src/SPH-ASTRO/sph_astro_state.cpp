@@ -193,30 +193,41 @@ void ensure_step_state(LAMMPS *lmp, const char *caller)
                        std::to_string(RECENT_VALUES) + " writedata no");
 }
 
-// XOR over atoms of a mixed 64-bit value (the splitmix64 finaliser)
-std::uint64_t state_hash(LAMMPS *lmp, const StateIndex &state, bool with_rho)
-{
-  auto mix = [](std::uint64_t z) {
+namespace {
+  // a mixed 64-bit value (the splitmix64 finaliser)
+  std::uint64_t mix(std::uint64_t z)
+  {
     z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
     z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
     return z ^ (z >> 31);
-  };
-  auto bits = [](double value) {
+  }
+  std::uint64_t bits(double value)
+  {
     std::uint64_t b;
     memcpy(&b, &value, sizeof(b));
     return b;
-  };
+  }
+}    // namespace
+
+std::uint64_t atom_state_hash(std::int64_t tag, const double *v, double u)
+{
+  std::uint64_t h = mix(static_cast<std::uint64_t>(tag));
+  h = mix(h ^ bits(v[0]));
+  h = mix(h ^ bits(v[1]));
+  h = mix(h ^ bits(v[2]));
+  return mix(h ^ bits(u));
+}
+
+// XOR over atoms of a mixed 64-bit value
+std::uint64_t state_hash(LAMMPS *lmp, const StateIndex &state, bool with_rho)
+{
   Atom *atom = lmp->atom;
   const double *u = atom->dvector[state.u];
   const double *rho = with_rho ? atom->dvector[state.rho] : nullptr;
   double **v = atom->v;
   std::uint64_t local = 0;
   for (int i = 0; i < atom->nlocal; i++) {
-    std::uint64_t h = mix(static_cast<std::uint64_t>(atom->tag[i]));
-    h = mix(h ^ bits(v[i][0]));
-    h = mix(h ^ bits(v[i][1]));
-    h = mix(h ^ bits(v[i][2]));
-    h = mix(h ^ bits(u[i]));
+    std::uint64_t h = atom_state_hash(atom->tag[i], v[i], u[i]);
     if (rho) h = mix(h ^ bits(rho[i]));
     local ^= h;
   }

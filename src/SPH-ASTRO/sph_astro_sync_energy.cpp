@@ -83,9 +83,9 @@ void SyncEnergy::measure(int groupbit, const EOS &eos, const StateIndex &state,
   readings_++;
 }
 
-void SyncEnergy::log_summary(double dt_max) const
+void SyncEnergy::log_summary(double dt_max, bigint steps) const
 {
-  if (comm->me != 0) return;
+  if (comm->me != 0 || (readings_ == 0 && steps == 0)) return;
   if (readings_ > 0)
     utils::logmesg(lmp,
                    "fix sph/astro steps individual: relative energy error at the {} "

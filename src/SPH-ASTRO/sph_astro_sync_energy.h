@@ -41,8 +41,8 @@ class SyncEnergy : protected LAMMPS_NS::Pointers {
   void measure(int groupbit, const EOS &eos, const StateIndex &state,
                std::map<std::string, double> &references);
   // the run's figures in the log (rank 0); dt_max: the top step, which every particle's step
-  // divides
-  void log_summary(double dt_max) const;
+  // divides; steps: LAMMPS steps the run took
+  void log_summary(double dt_max, LAMMPS_NS::bigint steps) const;
 
   // NaN where no point after the one that set E0 was measured (none is a reading of 0)
   double latest() const { return latest_; }
