@@ -485,10 +485,13 @@ TEST(Redefinition, StateChangedBetweenRunsResetsTheReference)
              {"unfix gas", "fix gas all sph/astro courant 0.3 steps " + steps,
               "velocity all set 0 0.5 0 sum yes", "run 0"});
     EXPECT_EQ(global_vector(lmp, "sum", 12)[DEREL], 0.0) << steps;
-    // a restart file: E0 comes back with it, and is reset after a change of v
+    // a restart file: E0 comes back with it, and is reset after a change of v, made after the
+    // file was read or before it was written
     const std::string restart = "test_continuation_reference.restart";
+    const std::string changed = "test_continuation_reference_changed.restart";
     commands(lmp, {"run 5", "write_restart " + restart, "log none"});
     const double written = global_vector(lmp, "sum", 12)[DEREL];
+    commands(lmp, {"velocity all set 0.5 0.5 0 sum yes", "write_restart " + changed});
     {
       std::ifstream in(log);
       const std::string text((std::istreambuf_iterator<char>(in)),
@@ -499,20 +502,21 @@ TEST(Redefinition, StateChangedBetweenRunsResetsTheReference)
     }
     std::remove(log.c_str());
     lmp.reset();    // (one instance at a time: the plugin is loaded for the process)
-    for (const bool velocity : {false, true}) {
+    for (const int velocity : {0, 1, 2}) {    // none, after reading, before writing
       auto again = open_lammps();
       commands(again,
-               {"read_restart " + restart, "fix gas all sph/astro courant 0.3 steps " + steps,
-                neighbour_lines(), "compute sum all sph/astro/global",
-                "thermo_style custom step c_sum[11]"});
-      if (velocity) commands(again, {"velocity all set 0 0 0.5 sum yes"});
+               {"read_restart " + (velocity == 2 ? changed : restart),
+                "fix gas all sph/astro courant 0.3 steps " + steps, neighbour_lines(),
+                "compute sum all sph/astro/global", "thermo_style custom step c_sum[11]"});
+      if (velocity == 1) commands(again, {"velocity all set 0 0 0.5 sum yes"});
       commands(again, {"run 0"});
       const double read = global_vector(again, "sum", 12)[DEREL];
       if (velocity)
-        EXPECT_EQ(read, 0.0) << steps;
+        EXPECT_EQ(read, 0.0) << steps << ", velocity " << velocity;
       else
         EXPECT_NEAR(read, written, 1e-12) << steps;
     }
     std::remove(restart.c_str());
+    std::remove(changed.c_str());
   }
 }

@@ -880,16 +880,19 @@ double FixSPHAstro::reference_energy(const std::string &compute_id, double curre
 // (length of ID, ID characters, energy) records, all stored as doubles
 void FixSPHAstro::write_restart(FILE *fp)
 {
-  // restart files written during a run (restart command) need the hash of this step (this
-  // fix keeps that of the last run's end: v or u changed since are so after write_restart too)
-  const uint64_t hash = state_hash(lmp, *state_, pair_has_continuity());
+  // a restart file written during a run (restart command) holds the hash of this step; one
+  // written between runs that of the last run's end, so that v or u changed since count as
+  // changed in the run continued from it too
+  const uint64_t hash = (update->whichflag == 0 && hash_taken_)
+      ? state_hash_
+      : state_hash(lmp, *state_, pair_has_continuity());
   if (comm->me != 0) return;
   auto *msm = dynamic_cast<MSMSPHAstroGravity *>(force->kspace);
-  std::vector<double> list = {
-      static_cast<double>(predicted_step_), static_cast<double>(hash >> 32),
-      static_cast<double>(hash & 0xffffffffULL),
-      static_cast<double>(reference_energy_.size() + (steps_ ? STEP_BLOCK : 0) + PADDING_BLOCK +
-                          TIME_BLOCK + (msm ? KSPACE_BLOCK : 0))};
+  std::vector<double> list = {static_cast<double>(predicted_step_), static_cast<double>(hash >> 32),
+                              static_cast<double>(hash & 0xffffffffULL),
+                              static_cast<double>(reference_energy_.size() +
+                                                  (steps_ ? STEP_BLOCK : 0) + PADDING_BLOCK +
+                                                  TIME_BLOCK + (msm ? KSPACE_BLOCK : 0))};
   for (const auto &[id, energy] : reference_energy_) {
     list.push_back(static_cast<double>(id.size()));
     for (char c : id) list.push_back(static_cast<double>(c));
