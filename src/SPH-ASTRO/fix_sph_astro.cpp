@@ -203,27 +203,7 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR,
                "fix sph/astro: longrange sync needs steps individual (with global steps every "
                "step is a synchronisation point)");
-  // keywords that would do nothing, and a limiter off, under which a blast runs into sleeping
-  // gas (Saitoh & Makino 2009, ApJ 697, L99): its energy goes wrong
-  if (comm->me == 0) {
-    for (const char *key : {"limiter", "kicks"})
-      if (!individual && given.count(key))
-        error->warning(FLERR,
-                       "fix sph/astro: {} {} is ignored with steps global (every particle takes "
-                       "the global leapfrog's step; it applies to steps individual)",
-                       key, given[key]);
-    if (given.count("longdisplacement") && !long_range_sync_)
-      error->warning(FLERR,
-                     "fix sph/astro: longdisplacement {} is ignored without longrange sync (it "
-                     "bounds the displacement between the long-range evaluations of sync)",
-                     given["longdisplacement"]);
-    if (individual && limiter_levels_ == 0)
-      error->warning(FLERR,
-                     "fix sph/astro: limiter off with steps individual: a shock or blast that "
-                     "reaches particles on long steps is not felt by them until their steps end, "
-                     "and the energy is not conserved (a hot spot in cold gas lost 28 % of its "
-                     "energy in 200 steps); use limiter 1 or 2 where gas is heated fast");
-  }
+  IndividualSteps::warn_keywords(lmp, given, individual, long_range_sync_, limiter_levels_);
   if (individual) {
     if (!adaptive_)
       error->all(FLERR,

@@ -54,6 +54,31 @@ void IndividualSteps::grow()
   }
 }
 
+// keywords that would do nothing, and a limiter off, under which a blast runs into gas whose
+// steps are long (Saitoh & Makino 2009, ApJ 697, L99): its energy goes wrong
+void IndividualSteps::warn_keywords(LAMMPS *lmp, const std::map<std::string, std::string> &given,
+                                    bool individual, bool long_range_sync, int levels)
+{
+  if (lmp->comm->me != 0) return;
+  for (const char *key : {"limiter", "kicks"})
+    if (!individual && given.count(key))
+      lmp->error->warning(FLERR,
+                          "fix sph/astro: {} {} is ignored with steps global (every particle "
+                          "takes the global leapfrog's step; it applies to steps individual)",
+                          key, given.at(key));
+  if (given.count("longdisplacement") && !long_range_sync)
+    lmp->error->warning(FLERR,
+                        "fix sph/astro: longdisplacement {} is ignored without longrange sync (it "
+                        "bounds the displacement between the long-range evaluations of sync)",
+                        given.at("longdisplacement"));
+  if (individual && levels == 0)
+    lmp->error->warning(FLERR,
+                        "fix sph/astro: limiter off with steps individual: a shock or blast that "
+                        "reaches particles on long steps is not felt by them until their steps "
+                        "end, and the energy is not conserved (a hot spot in cold gas lost 28 % "
+                        "of its energy in 200 steps); use limiter 1 or 2 where gas is heated fast");
+}
+
 void IndividualSteps::check_options(const PairOptions &o, bool entropy, int igroup)
 {
   const char *what = entropy ? "fix sph/astro thermal entropy"

@@ -63,6 +63,7 @@
 #include "sph_astro_state.h"
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -90,6 +91,11 @@ class IndividualSteps : protected LAMMPS_NS::Pointers {
   // pair_kicks: pair forces integrated pair by pair (else each particle's on its own step)
   IndividualSteps(LAMMPS_NS::LAMMPS *lmp, LAMMPS_NS::Fix *owner, int levels, bool pair_kicks);
 
+  // fix sph/astro's keywords given (with their values) that do nothing (limiter and kicks with
+  // global steps, longdisplacement without longrange sync), and a limiter off (levels 0) with
+  // individual steps: warnings naming them (rank 0)
+  static void warn_keywords(LAMMPS_NS::LAMMPS *lmp, const std::map<std::string, std::string> &given,
+                            bool individual, bool long_range_sync, int levels);
   // what the hierarchy does not carry between a particle's evaluations is an error; the fix's
   // group (igroup) must hold all particles
   void check_options(const PairOptions &o, bool entropy, int igroup);
