@@ -7,8 +7,9 @@ uninterrupted run.
 Runs unittest/in.restart_ranks two ways: straight (2 x steps on the first rank count, writing a
 restart file at step steps, where LAMMPS also re-neighbours) and continue (read_restart of that
 file, the fixes defined again, steps more) on each rank count. With --exact the
-continuation on the writer's rank count must equal the straight run bit for bit (fixed h); on
-the others, and with variable h on all, every field must agree to round-off: a relative
+continuation on the writer's rank count must equal the straight run bit for bit, the simulation
+time included (the dump's TIME); on the others every field and the time must agree to
+round-off: a relative
 difference of --tol of the field's scale. (With variable h the package's neighbour lists of the
 restart step serve the iterated h, where the uninterrupted run's served the predicted h of the
 step before the iteration; when an h later outgrows one and not the other, the two runs add
@@ -37,11 +38,14 @@ def lmp(workdir, ranks, mode, extra, out=None):
 
 
 def read_dump(path):
+    """the atoms sorted by ID, and the simulation time (the dump's TIME item, as written)"""
     with open(path) as f:
         lines = f.read().splitlines()
     start = next(k for k, line in enumerate(lines) if line.startswith("ITEM: ATOMS"))
+    time = next(lines[k + 1].strip() for k, line in enumerate(lines)
+                if line.startswith("ITEM: TIME"))
     data = np.loadtxt(lines[start + 1:], ndmin=2)
-    return data[np.argsort(data[:, 0])]
+    return data[np.argsort(data[:, 0])], time
 
 
 def main():
@@ -56,13 +60,13 @@ def main():
     ranks = [int(r) for r in args.ranks.split(",")]
     straight = os.path.join(args.workdir, "dump.straight")
     lmp(args.workdir, ranks[0], "straight", extra, straight)
-    ref = read_dump(straight)
+    ref, time_ref = read_dump(straight)
     scale = np.maximum(np.abs(ref[:, 1:]).max(axis=0), 1e-300)
     failed = False
     for n in ranks:
         out = os.path.join(args.workdir, f"dump.continue.np{n}")
         lmp(args.workdir, n, "continue", extra, out)
-        cont = read_dump(out)
+        cont, time = read_dump(out)
         if not np.array_equal(cont[:, 0], ref[:, 0]):
             print(f"np {n}: other atoms than the straight run")
             failed = True
@@ -70,11 +74,14 @@ def main():
         diff = (np.abs(cont[:, 1:] - ref[:, 1:]) / scale).max(axis=0)
         worst = ", ".join(f"{f} {d:.1e}" for f, d in zip(FIELDS, diff))
         bound = 0.0 if (args.exact and n == ranks[0]) else args.tol
-        ok = bool(np.all(diff <= bound))
+        # the simulation time: as written (17 digits) on the writer's rank count, else to round-off
+        time_diff = abs(float(time) - float(time_ref)) / max(abs(float(time_ref)), 1e-300)
+        time_ok = time == time_ref if bound == 0.0 else time_diff <= args.tol
+        ok = bool(np.all(diff <= bound)) and time_ok
         failed |= not ok
         what = "bit for bit" if bound == 0.0 else f"within {bound:g}"
         print(f"np {n} continued from np {ranks[0]}: {'ok' if ok else 'FAILED'} ({what}; "
-              f"largest relative differences {worst})")
+              f"largest relative differences {worst}; time {time} against {time_ref})")
     return 1 if failed else 0
 
 

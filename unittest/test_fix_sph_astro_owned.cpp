@@ -163,10 +163,72 @@ TEST(OwnedProperty, ValuesFollowTheirAtoms)
   if (lmp->comm->me == 0) std::remove(restart.c_str());
 }
 
+// write_data writes the values as fix property/atom does, and read_data reads them back into a
+// box made first (the fix needs a box): create_box, the fix, read_data ... add append fix p NULL
+// p. The atoms read_data creates get their slots (read_data sets no per-atom values of fixes; it
+// stopped with a segmentation fault), also without the section: their values are 0 and can be set
+TEST(OwnedProperty, DataFileRoundTrip)
+{
+  const std::string data = "test_fix_sph_astro_owned.data";
+  const std::string plain = "test_fix_sph_astro_owned_nofix.data";
+  LAMMPS_NS::bigint natoms;
+  {
+    auto lmp = open_lammps();
+    moving_gas(lmp);
+    commands(lmp, {"run 100", "write_data " + data, "write_data " + plain + " nofix"});
+    natoms = lmp->atom->natoms;
+  }
+  for (const bool section : {true, false}) {
+    auto lmp = open_lammps();
+    commands(lmp,
+             {"units lj", "atom_style atomic", "atom_modify map array", "lattice fcc 0.8",
+              "region box block 0 10 0 10 0 10", "create_box 1 box", "pair_style zero 1.0",
+              "fix p all sph/astro/owned d_a d2_b 3 i_c",
+              section ? "read_data " + data + " add append fix p NULL p"
+                      : "read_data " + plain + " add append"});
+    ASSERT_EQ(lmp->atom->natoms, natoms);
+    if (section) {
+      EXPECT_EQ(wrong_values(lmp), 0);
+    } else {
+      EXPECT_EQ(wrong_values(lmp, true, 1), 0);    // all 0
+      commands(lmp,
+               {"variable a atom 1.5*id", "variable c atom 2*id", "variable b1 atom id+0.25",
+                "variable b2 atom id+0.5", "variable b3 atom -id", "set group all d_a v_a",
+                "set group all i_c v_c", "set group all d2_b[1] v_b1", "set group all d2_b[2] v_b2",
+                "set group all d2_b[3] v_b3"});
+      EXPECT_EQ(wrong_values(lmp), 0);
+    }
+    commands(lmp, {"fix move all nve", "run 100"});
+    EXPECT_EQ(wrong_values(lmp), 0) << (section ? "with" : "without") << " the section";
+  }
+  int me;
+  MPI_Comm_rank(MPI_COMM_WORLD, &me);
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (me == 0) {
+    std::remove(data.c_str());
+    std::remove(plain.c_str());
+  }
+}
+
 TEST_F(BadInputTest, OwnedPropertyArguments)
 {
   expect_error("fix p all sph/astro/owned", "expected one or more of d_NAME");
   expect_error("fix p all sph/astro/owned d_a q", "'q' is not one of d_NAME");
   expect_error("fix p all sph/astro/owned d_a ghost yes", "'ghost' is not one of d_NAME");
   expect_error("fix p all sph/astro/owned rmass", "'rmass' is not one of d_NAME");
+  // an array without its number of columns, and writedata without yes or no
+  expect_error("fix p all sph/astro/owned d2_b",
+               "fix sph/astro/owned: d2_b needs its number of columns (d2_NAME N, an integer N "
+               ">= 1); nothing follows it");
+  expect_error("fix p all sph/astro/owned i2_b d_a",
+               "fix sph/astro/owned: i2_b needs its number of columns (i2_NAME N, an integer N "
+               ">= 1); got 'd_a'");
+  expect_error("fix p all sph/astro/owned d2_b 0", "d2_b needs its number of columns");
+  expect_error("fix p all sph/astro/owned d_a writedata",
+               "fix sph/astro/owned: writedata needs yes or no; nothing follows it");
+  expect_error("fix p all sph/astro/owned d_a writedata d_b",
+               "fix sph/astro/owned: writedata needs yes or no; got 'd_b'");
+  for (const char *flag : {"yes", "no"})
+    EXPECT_EQ(error_of(lmp, std::string("fix p all sph/astro/owned d_a d2_b 3 writedata ") + flag),
+              "");
 }

@@ -304,3 +304,19 @@ TEST_F(Setting, ParticlesAtTheDhdtCapAreCountedAndReported)
   }
 }
 
+// cold gas at rest: no particle's criteria limit its step, so with individual steps the top step
+// is dtmax; a dtmax of 1e308 takes the simulation time past the largest double at the second
+// step. The run stops there, naming dtmax and its value, instead of running on at time inf (a
+// value beyond the largest double is refused by LAMMPS' number parser)
+TEST_F(Setting, DtmaxThatOverflowsTheTimeIsNamed)
+{
+  sph("sph/astro steps individual dtmax 1e308");
+  commands(lmp, {"set group all d_u 0.0", "velocity all set 0 0 0"});
+  const std::string message = error_of(lmp, "run 5");
+  EXPECT_NE(message.find("fix sph/astro: the simulation time 1e+308 plus the next timestep "
+                         "1e+308 is not finite at step 1"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("dtmax = 1e+308"), std::string::npos) << message;
+  EXPECT_LT(lmp->update->ntimestep, 2);
+}

@@ -77,8 +77,13 @@ void ComputeSPHAstroAtom::init()
     error->all(FLERR, "compute sph/astro/atom requires fix sph/astro (the per-particle state)");
   steps_ = SPHAstro::StepIndex();
   SPHAstro::find_step_state(lmp, steps_);
+  // (the step state stays after a run with individual steps when fix sph/astro is defined
+  // again with global steps: its bins are then no particle's)
+  const auto integrators = modify->get_fix_by_style("^sph/astro$");
+  auto *integrator = integrators.empty() ? nullptr
+                                         : dynamic_cast<FixSPHAstro *>(integrators.front());
   for (int field : fields_)
-    if (field == BIN && steps_.bin < 0)
+    if (field == BIN && (steps_.bin < 0 || !integrator || !integrator->individual_steps()))
       error->all(FLERR,
                  "compute sph/astro/atom bin: there are no time bins; they belong to fix "
                  "sph/astro steps individual");

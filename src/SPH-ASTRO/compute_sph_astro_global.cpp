@@ -25,6 +25,7 @@
 #include "sph_astro_state.h"
 
 #include "atom.h"
+#include "comm.h"
 #include "domain.h"
 #include "error.h"
 #include "fix.h"
@@ -35,6 +36,7 @@
 #include "pair_sph_astro.h"
 #include "sph_astro_options.h"
 #include "update.h"
+#include "utils.h"
 
 #include <cmath>
 
@@ -79,6 +81,8 @@ void ComputeSPHAstroGlobal::init()
   fix_ = fixes.empty() ? nullptr : dynamic_cast<FixSPHAstro *>(fixes.front());
   auto hfixes = modify->get_fix_by_style("^sph/astro/h$");
   hfix_ = hfixes.empty() ? nullptr : hfixes.front();
+  // (fix sph/astro's init(), which follows, tells whether v or u changed since the last run)
+  check_state_ = true;
 }
 
 void ComputeSPHAstroGlobal::compute_vector()
@@ -101,6 +105,7 @@ void ComputeSPHAstroGlobal::compute_vector()
   const int nlocal = atom->nlocal;
 
   double local[NVALUES] = {0.0};
+  uint64_t hash = 0;    // of the state read
   double unwrap[3];
   const double *h = atom->dvector[state_->h];
   double hrange[2] = {INFINITY, -INFINITY};    // -hmin, hmax for one MPI_MAX
@@ -124,6 +129,7 @@ void ComputeSPHAstroGlobal::compute_vector()
     local[LZ] += m * (unwrap[0] * vi[1] - unwrap[1] * vi[0]);
     local[EKIN] += 0.5 * m * (vi[0] * vi[0] + vi[1] * vi[1] + vi[2] * vi[2]);
     local[ETHERM] += m * eos.energy_of(rho[i], ui);
+    hash ^= SPHAstro::atom_state_hash(atom->tag[i], vi, ui);
     hrange[0] = MIN(hrange[0], h[i]);
     hrange[1] = MAX(hrange[1], h[i]);
   }
@@ -148,15 +154,33 @@ void ComputeSPHAstroGlobal::compute_vector()
   vector[EPOT] = epot;
   vector[ETOT] = vector[EKIN] + vector[ETHERM] + epot;
 
-  double e0;
-  if (fix_)
-    e0 = fix_->reference_energy(id, vector[ETOT]);
-  else {
-    if (!own_reference_set_) {
-      own_reference_ = vector[ETOT];
-      own_reference_set_ = true;
+  // E0 is the energy of the state the run began from, kept across runs that continue it: v or u
+  // changed since the last run (velocity, set; fix sph/astro knows, from its state hash at the
+  // run's end, or, defined since, this compute from the state it read at that step) set it anew
+  uint64_t read_hash = 0;
+  MPI_Allreduce(&hash, &read_hash, 1, MPI_UINT64_T, MPI_BXOR, world);
+  if (check_state_) {
+    check_state_ = false;
+    const int changed = fix_ ? fix_->state_changed() : -1;
+    if (own_reference_set_ &&
+        (changed == 1 ||
+         (changed == -1 && read_step_ == update->ntimestep && read_hash != read_hash_))) {
+      own_reference_set_ = false;
+      if (comm->me == 0)
+        utils::logmesg(lmp,
+                       "compute sph/astro/global {}: the reference energy E0 is reset from {:.10g} "
+                       "to {:.10g} at step {}: v or u changed since the last run (velocity, set, "
+                       "...)\n",
+                       id, own_reference_, vector[ETOT], update->ntimestep);
     }
-    e0 = own_reference_;
   }
+  read_hash_ = read_hash;
+  read_step_ = update->ntimestep;
+  if (!own_reference_set_) {    // (fix sph/astro's: that of a restart file, if it holds one)
+    own_reference_ = fix_ ? fix_->reference_energy(id, vector[ETOT]) : vector[ETOT];
+    own_reference_set_ = true;
+  } else if (fix_)
+    fix_->reference_energy(id, own_reference_);    // (for its restart files)
+  const double e0 = own_reference_;
   vector[DEREL] = (e0 != 0.0) ? (vector[ETOT] - e0) / std::fabs(e0) : vector[ETOT] - e0;
 }

@@ -20,6 +20,8 @@ ComputeStyle(sph/astro/global,ComputeSPHAstroGlobal);
 
 #include "compute.h"
 
+#include <cstdint>
+
 namespace SPHAstro {
 struct StateIndex;
 }    // namespace SPHAstro
@@ -60,8 +62,14 @@ class ComputeSPHAstroGlobal : public Compute {
   class PairSPHAstro *pair_;
   class FixSPHAstro *fix_;
   class Fix *hfix_;    // fix sph/astro/h, for the h-iteration statistics
+  // E0: taken at the first evaluation (or from fix sph/astro's restart record), kept while the
+  // state continues, set anew at the first evaluation after v or u changed between runs
   bool own_reference_set_;
   double own_reference_;
+  bool check_state_ = false;    // at the first evaluation after init()
+  // the state read at the last evaluation: its hash (atom_state_hash()) and step
+  uint64_t read_hash_ = 0;
+  bigint read_step_ = -1;
 };
 
 }    // namespace LAMMPS_NS

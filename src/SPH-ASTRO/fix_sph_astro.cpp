@@ -33,6 +33,7 @@
 #include "domain.h"
 #include "error.h"
 #include "force.h"
+#include "kspace.h"
 #include "group.h"
 #include "memory.h"
 #include "modify.h"
@@ -61,14 +62,17 @@ using namespace FixConst;
 using namespace SPHAstro;
 
 // the reference-energy count of a restart record is raised by these when the shrink-wrap
-// padding (3 values) and an individual-step block follow
-static constexpr int STEP_BLOCK = 1 << 20, PADDING_BLOCK = 1 << 21;
+// padding (3 values), the time (RestartTime), the state of msm/sph/astro/gravity and an
+// individual-step block follow
+static constexpr int STEP_BLOCK = 1 << 20, PADDING_BLOCK = 1 << 21, TIME_BLOCK = 1 << 22,
+                     KSPACE_BLOCK = 1 << 23;
 
 FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), state_(new StateIndex()), entropy_index_(new EntropyIndex()),
     continuity_index_(new ContinuityIndex()), sentinel_(new StabilitySentinel(lmp))
 {
   bool individual = false;
+  std::map<std::string, std::string> given;    // the keywords given, with their last value
 
   time_integrate = 1;
   restart_global = 1;
@@ -184,6 +188,7 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
           "conduction, conductivity, xsph, dtmax, dtmin, tend, dt, steps, limiter, "
           "kicks, longrange, longdisplacement, sentinel, collapse, hshare",
           key);
+    given[key] = val;
     iarg += 2;
   }
   if (atom->rho_flag || atom->esph_flag)
@@ -199,6 +204,7 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR,
                "fix sph/astro: longrange sync needs steps individual (with global steps every "
                "step is a synchronisation point)");
+  IndividualSteps::warn_keywords(lmp, given, individual, long_range_sync_, limiter_levels_);
   if (individual) {
     if (!adaptive_)
       error->all(FLERR,
@@ -229,6 +235,8 @@ FixSPHAstro::FixSPHAstro(LAMMPS *lmp, int narg, char **arg) :
 FixSPHAstro::~FixSPHAstro()
 {
   memory->destroy(xsph_);
+  // (the particles inside their steps: to the current time, if unchanged since the last run)
+  if (steps_ && steps_local_hash_taken_) steps_->hand_over(steps_local_hash_);
   delete steps_;
   delete sync_energy_;
   delete sentinel_;
@@ -312,12 +320,24 @@ void FixSPHAstro::init()
                "fix sph/astro: only one instance is allowed (it sets the global timestep); use "
                "one fix for all SPH particles");
   sentinel_->check_setting(this, adaptive_);
+  restart_time_.restore(update);    // (as Integrate::init() left it: sph_astro_restart_time.h)
 
   // predictions are kept only when they belong to this step and v and u (and rho) are as the
   // last run left them (a continued or restarted run); after `velocity` or `set` they start
   // anew
   const bool unchanged = state_hash(lmp, *state_, pair_has_continuity()) == state_hash_;
   if (!unchanged) entropy_needs_init_ = true;    // A follows from the new u at the next density
+  // the reference energies refer to the state the last run (or the restart file) left: after a
+  // change of v or u (velocity, set) they are set anew
+  state_changed_ = hash_taken_ ? (unchanged ? 0 : 1) : -1;
+  if (state_changed_ == 1 && !reference_energy_.empty()) {
+    reference_energy_.clear();
+    if (comm->me == 0)
+      utils::logmesg(lmp,
+                     "fix sph/astro: v or u changed since the last run or restart file (velocity, "
+                     "set, ...): the reference energies E0 of compute sph/astro/global and of the "
+                     "synchronisation points are set anew\n");
+  }
   pair_->schedule_initialisation(entropy_ && entropy_needs_init_,
                                  continuity_ && density_needs_init_);
   if (steps_) {
@@ -590,8 +610,9 @@ std::string FixSPHAstro::limits() const
 
 void FixSPHAstro::post_run()
 {
-  if (steps_) steps_->log_summary();                // the hierarchy's figures and its bins
-  if (sync_energy_) sync_energy_->log_summary();    // its energy at synchronisation points
+  if (steps_) steps_->log_summary();        // the hierarchy's figures and its bins
+  if (sync_energy_ && steps_->started())    // its energy at synchronisation points
+    sync_energy_->log_summary(steps_->dt_max(), update->nsteps);
   for (ActiveSetClient *client : active_set_clients(lmp)) {
     const std::string line = client->run_summary();    // (collective)
     if (!line.empty() && comm->me == 0) utils::logmesg(lmp, line + "\n");
@@ -601,6 +622,12 @@ void FixSPHAstro::post_run()
   // a fixed step shortened to land on tend is the user's step again
   if (!adaptive_ && update->dt != user_dt_) set_timestep(user_dt_);
   state_hash_ = state_hash(lmp, *state_, pair_has_continuity());
+  hash_taken_ = true;
+  if (steps_) {
+    steps_local_hash_ = steps_->local_hash();
+    steps_local_hash_taken_ = true;
+  }
+  restart_time_.take(update);    // (a next run continues this time: sph_astro_restart_time.h)
 }
 
 // make thermo (and the computes it needs) report the step that reaches tend. All computes
@@ -715,7 +742,19 @@ void FixSPHAstro::next_timestep(bool from_end_of_step)
     error->all(FLERR, "fix sph/astro: timestep {} at step {} is not positive and finite", dt,
                update->ntimestep);
   }
+  check_time_after(dt);
   set_timestep(dt);
+}
+
+void FixSPHAstro::check_time_after(double dt) const
+{
+  const double now = current_time();
+  if (std::isfinite(now + dt)) return;
+  error->all(FLERR,
+             "fix sph/astro: the simulation time {} plus the next timestep {} is not finite at "
+             "step {} (no particle's criteria limit the step; {}): set a smaller dtmax",
+             now, dt, update->ntimestep,
+             dtmax_ > 0.0 ? fmt::format("dtmax = {}", dtmax_) : std::string("no dtmax is set"));
 }
 
 void FixSPHAstro::set_timestep(double dt)
@@ -781,6 +820,7 @@ void FixSPHAstro::next_individual_timestep()
   if (!(dt > 0.0) || !std::isfinite(dt))
     error->all(FLERR, "fix sph/astro: timestep {} at step {} is not positive and finite", dt,
                update->ntimestep);
+  check_time_after(dt);
   // thermo at the step that reaches tend (on the time line's grid)
   if (tend_ > 0.0 && current_time() + dt >= tend_ * (1.0 - 1e-12))
     schedule_output(update->ntimestep + 1);
@@ -842,19 +882,31 @@ double FixSPHAstro::reference_energy(const std::string &compute_id, double curre
 // (length of ID, ID characters, energy) records, all stored as doubles
 void FixSPHAstro::write_restart(FILE *fp)
 {
-  // restart files written during a run (restart command) need the hash of this step
-  state_hash_ = state_hash(lmp, *state_, pair_has_continuity());
+  // a restart file written during a run (restart command) holds the hash of this step; one
+  // written between runs that of the last run's end, so that v or u changed since count as
+  // changed in the run continued from it too
+  const uint64_t hash = (update->whichflag == 0 && hash_taken_)
+      ? state_hash_
+      : state_hash(lmp, *state_, pair_has_continuity());
   if (comm->me != 0) return;
-  std::vector<double> list = {
-      static_cast<double>(predicted_step_), static_cast<double>(state_hash_ >> 32),
-      static_cast<double>(state_hash_ & 0xffffffffULL),
-      static_cast<double>(reference_energy_.size() + (steps_ ? STEP_BLOCK : 0) + PADDING_BLOCK)};
+  auto *solver = dynamic_cast<ContinuationClient *>(force->kspace);
+  std::vector<double> list = {static_cast<double>(predicted_step_), static_cast<double>(hash >> 32),
+                              static_cast<double>(hash & 0xffffffffULL),
+                              static_cast<double>(reference_energy_.size() +
+                                                  (steps_ ? STEP_BLOCK : 0) + PADDING_BLOCK +
+                                                  TIME_BLOCK + (solver ? KSPACE_BLOCK : 0))};
   for (const auto &[id, energy] : reference_energy_) {
     list.push_back(static_cast<double>(id.size()));
     for (char c : id) list.push_back(static_cast<double>(c));
     list.push_back(energy);
   }
   for (int d = 0; d < 3; d++) list.push_back(DomainPadding::of(domain)[d]);
+  RestartTime::write(update, list);
+  if (solver) {    // (its length, then its values)
+    const std::vector<double> state = solver->continuation_state();
+    list.push_back(static_cast<double>(state.size()));
+    list.insert(list.end(), state.begin(), state.end());
+  }
   if (steps_) steps_->write_restart(list);
   int size = static_cast<int>(list.size() * sizeof(double));
   fwrite(&size, sizeof(int), 1, fp);
@@ -870,6 +922,7 @@ void FixSPHAstro::restart(char *buf)
   predicted_step_ = static_cast<bigint>(list[n++]);
   state_hash_ = static_cast<uint64_t>(list[n++]) << 32;
   state_hash_ |= static_cast<uint64_t>(list[n++]);
+  hash_taken_ = true;
   const int count = static_cast<int>(list[n++]);
   const int nref = count & (STEP_BLOCK - 1);
   reference_energy_.clear();
@@ -880,6 +933,13 @@ void FixSPHAstro::restart(char *buf)
     reference_energy_[id] = list[n++];
   }
   if (count & PADDING_BLOCK) n += restore_shrink_wrap_padding(domain, list + n);
+  if (count & TIME_BLOCK) n += restart_time_.read(list + n);
+  kspace_state_.clear();
+  if (count & KSPACE_BLOCK) {
+    const int len = static_cast<int>(list[n++]);
+    kspace_state_.assign(list + n, list + n + len);
+    n += len;
+  }
   // a hierarchy of individual steps continues where it was (if this fix steps individually)
   if ((count & STEP_BLOCK) && steps_) steps_->read_restart(list + n);
 }

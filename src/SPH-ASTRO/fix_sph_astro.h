@@ -15,6 +15,8 @@ FixStyle(sph/astro,FixSPHAstro);
 #define LMP_FIX_SPH_ASTRO_H
 
 #include "fix.h"
+#include "sph_astro_active_set.h"
+#include "sph_astro_restart_time.h"
 
 #include <cstdint>
 #include <map>
@@ -33,7 +35,7 @@ class SyncEnergy;
 
 namespace LAMMPS_NS {
 
-class FixSPHAstro : public Fix {
+class FixSPHAstro : public Fix, public SPHAstro::ContinuationStore {
  public:
   FixSPHAstro(class LAMMPS *, int, char **);
   ~FixSPHAstro() override;
@@ -73,13 +75,26 @@ class FixSPHAstro : public Fix {
   // of its step; d2_vest and d_uest hold them at the current time)
   bool mid_step(int i) const;
 
+  // steps individual: the particles' bins and steps (fix SPH_ASTRO_STEPS) are this fix's
+  bool individual_steps() const { return steps_ != nullptr; }
+
   // the step owned atom i's own timestep criteria allow (the smallest of them, at most dtmax;
   // infinite where none applies), at its latest force evaluation
   double own_timestep(int i) const;
 
+  // the kspace solver's choices of the run that wrote the restart file read (msm/sph/astro/gravity:
+  // split radius and grid; null if none)
+  const std::vector<double> *restart_continuation() const override
+  {
+    return kspace_state_.empty() ? nullptr : &kspace_state_;
+  }
+
   // reference total energy of a compute sph/astro/global (by compute ID): set at its first
   // evaluation, kept across restarts
   double reference_energy(const std::string &compute_id, double current);
+  // have v or u changed since the last run of this fix ended or its restart file was written
+  // (1), or not (0), or does it not know (-1: defined since); from its latest init()
+  int state_changed() const { return state_changed_; }
 
  protected:
   // C in dt = C h / v_sig with v_sig = max_j (c_i + c_j - beta w_ij) (vsig pairs, or signal
@@ -118,7 +133,17 @@ class FixSPHAstro : public Fix {
   bigint predicted_step_ = -1;    // step at which d2_vest/d_uest hold predictions
   uint64_t state_hash_ = 0;       // hash of v and u (and rho with density continuity) when
                                   // the last run ended
+  bool hash_taken_ = false;       // (by a run of this fix, or from a restart file)
+  // steps individual: this rank's part of the hash at the last run's end (for the hand-over of
+  // the particles inside their steps when this fix goes)
+  uint64_t steps_local_hash_ = 0;
+  bool steps_local_hash_taken_ = false;
+  int state_changed_ = -1;    // state_changed()
   std::map<std::string, double> reference_energy_;
+  // the simulation time at the last run's end or of the restart file read (put back at init:
+  // sph_astro_restart_time.h)
+  SPHAstro::RestartTime restart_time_;
+  std::vector<double> kspace_state_;
   bool dt_pending_ = false;    // first dt of a run: set once all setup forces are in
   double user_dt_ = 0.0;       // with dt fixed: the step to restore after a tend clip
 
@@ -160,6 +185,8 @@ class FixSPHAstro : public Fix {
   void next_timestep(bool from_end_of_step = false);
   void set_timestep(double dt);
   double current_time() const;
+  // the simulation time after a step of dt must be finite (an error naming dtmax otherwise)
+  void check_time_after(double dt) const;
   void schedule_output(bigint step);
 };
 

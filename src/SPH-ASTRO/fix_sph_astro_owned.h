@@ -16,6 +16,8 @@ FixStyle(sph/astro/owned,FixSPHAstroOwned);
 
 #include "fix_property_atom.h"
 
+#include <unordered_set>
+
 namespace LAMMPS_NS {
 
 // fix ID group-ID sph/astro/owned name1 [name2 ...] [writedata yes/no]
@@ -33,6 +35,10 @@ class FixSPHAstroOwned : public FixPropertyAtom {
  public:
   FixSPHAstroOwned(class LAMMPS *, int, char **);
 
+  void init() override;
+  void read_data_section(char *, int, char *, tagint) override;
+  void write_data_section_keyword(int, FILE *) override;
+  void write_data_section(int, FILE *, int, double **, int) override;
   void grow_arrays(int) override;
   void copy_arrays(int, int, int) override;
   void set_arrays(int) override;
@@ -45,6 +51,10 @@ class FixSPHAstroOwned : public FixPropertyAtom {
 
  private:
   int capacity_;
+  // atoms (IDs) whose values a data file section gave (read_data then calls set_arrays())
+  std::unordered_set<tagint> from_data_;
+  std::size_t longest_line_ = 0;    // of the data file section being written
+  void resize(int n);
 };
 
 }    // namespace LAMMPS_NS

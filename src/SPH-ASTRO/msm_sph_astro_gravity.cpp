@@ -22,6 +22,7 @@
 
 #include "msm_sph_astro_gravity.h"
 
+#include "fix.h"
 #include "sph_astro_gravity_kspace.h"
 
 #include "comm.h"
@@ -31,7 +32,9 @@
 #include "grid3d.h"
 #include "math_extra.h"
 #include "memory.h"
+#include "modify.h"
 #include "neighbor.h"
+#include "pair.h"
 #include "update.h"
 
 #include <algorithm>
@@ -41,6 +44,18 @@ using namespace SPHAstro;
 
 static constexpr int OFFSET = 16384;    // as in LAMMPS' msm.cpp: int(-0.75) must be -1
 static constexpr const char *STYLE = "kspace_style msm/sph/astro/gravity";
+
+// the split radius and grid of the run that wrote the restart file read (fix sph/astro's
+// restart record), nullptr if none
+static const double *restart_continuation_state(LAMMPS *lmp)
+{
+  for (Fix *fix : lmp->modify->get_fix_list()) {
+    auto *store = dynamic_cast<ContinuationStore *>(fix);
+    const std::vector<double> *kept = store ? store->restart_continuation() : nullptr;
+    if (kept && kept->size() == MSMSPHAstroGravity::CONTINUATION_VALUES) return kept->data();
+  }
+  return nullptr;
+}
 
 MSMSPHAstroGravity::MSMSPHAstroGravity(LAMMPS *lmp) : MSM(lmp)
 {
@@ -70,17 +85,68 @@ void MSMSPHAstroGravity::init()
                STYLE, boundary_string(lmp));
   G_ = gravity_constant(lmp, STYLE);
   masses_to_charges(lmp);
+  // MSM::init chooses the split radius (the pair's cutoff) and the grid for the box of this
+  // run's start. A run that continues another at the step where that one ended (a second run
+  // command, or the run that wrote the restart file read) keeps that run's instead: the ones
+  // chosen anew would give other forces (on a collapsing ball with a hot core, x, v and u 3.7e-4
+  // apart, relative to their largest values, 8 steps after a restart written during a run)
+  double kept[CONTINUATION_VALUES];
+  bool continuing = false;
+  if (last_step_ == update->ntimestep && spacing_[0] > 0.0) {
+    const std::vector<double> state = continuation_state();
+    std::copy(state.begin(), state.end(), kept);
+    continuing = true;
+  } else {
+    const double *stored = restart_continuation_state(lmp);
+    continuing = stored && static_cast<bigint>(stored[0]) == update->ntimestep;
+    if (continuing) std::copy_n(stored, CONTINUATION_VALUES, kept);
+  }
+  continuing = continuing && !gridflag;    // (a grid given with kspace_modify mesh stays)
+  const int adjust = adjust_cutoff_flag;
+  if (continuing) {
+    int dim;
+    auto *pair_cutoff = static_cast<double *>(force->pair->extract("cut_coul", dim));
+    if (pair_cutoff) *pair_cutoff = kept[1];
+    gridflag = 1;    // (MSM::init then takes this grid and cutoff as given)
+    adjust_cutoff_flag = 0;
+    nx_msm_max = static_cast<int>(kept[2]);
+    ny_msm_max = static_cast<int>(kept[3]);
+    nz_msm_max = static_cast<int>(kept[4]);
+  }
   {
     // accuracy estimates with a positive prefactor G and the reference force
     ScopedGravityConstants constants(force, G_, gravity_reference_force(lmp, G_));
     for (double &h : spacing_) h = 0.0;    // MSM::init chooses the grid for this box
     MSM::init();
   }
+  if (continuing) {
+    gridflag = 0;
+    adjust_cutoff_flag = adjust;
+    std::copy_n(kept + 5, 3, spacing_);
+    if (comm->me == 0)
+      utils::logmesg(lmp,
+                     "{}: split radius {:.8g} and grid {} {} {} of the run continued (step {}) "
+                     "kept\n",
+                     STYLE, cutoff, nx_msm[0], ny_msm[0], nz_msm[0], update->ntimestep);
+  }
   qqrd2e = -G_;    // attraction
+}
+
+std::vector<double> MSMSPHAstroGravity::continuation_state() const
+{
+  return {static_cast<double>(last_step_),
+          cutoff,
+          static_cast<double>(nx_msm[0]),
+          static_cast<double>(ny_msm[0]),
+          static_cast<double>(nz_msm[0]),
+          spacing_[0],
+          spacing_[1],
+          spacing_[2]};
 }
 
 void MSMSPHAstroGravity::compute(int eflag, int vflag)
 {
+  last_step_ = update->ntimestep;
   // fix sph/astro longrange sync: the forces only where every particle ends its step, kept
   // apart; in between only the energy and virial when asked for (its forces are taken back)
   LongRangeSchedule *split = schedule_;

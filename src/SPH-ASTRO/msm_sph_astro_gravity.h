@@ -21,9 +21,13 @@ KSpaceStyle(msm/sph/astro/gravity,MSMSPHAstroGravity);
 #include "msm.h"
 #include "sph_astro_active_set.h"
 
+#include <vector>
+
 namespace LAMMPS_NS {
 
-class MSMSPHAstroGravity : public MSM, public SPHAstro::LongRangeClient {
+class MSMSPHAstroGravity : public MSM,
+                           public SPHAstro::LongRangeClient,
+                           public SPHAstro::ContinuationClient {
  public:
   MSMSPHAstroGravity(class LAMMPS *);
   void settings(int, char **) override;
@@ -36,10 +40,16 @@ class MSMSPHAstroGravity : public MSM, public SPHAstro::LongRangeClient {
     schedule_ = schedule;
   }
 
+  // the split radius and grid in use, for a run that continues this one (fix sph/astro's
+  // restart record): step, cutoff, the finest grid's points (3), the spacing kept (3)
+  static constexpr int CONTINUATION_VALUES = 8;
+  std::vector<double> continuation_state() const override;
+
  protected:
   double G_;
   SPHAstro::LongRangeSchedule *schedule_ = nullptr;
   double spacing_[3] = {0.0, 0.0, 0.0};    // finest grid spacing of the run start (0: none)
+  bigint last_step_ = -1;                  // the step of the last evaluation (-1: none)
 
   void refine_grid_to_box();
   void set_grid_local_corners();

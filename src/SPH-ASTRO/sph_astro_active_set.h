@@ -5,10 +5,11 @@
    (the same licence as LAMMPS); see the LICENSE file.
 ------------------------------------------------------------------------- */
 
-// What the integrator (fix sph/astro) tells the force styles below it, without their knowing
-// it: the particles active in a force evaluation (individual timesteps) and, for a grid
-// long-range solver with `longrange sync`, when to compute. The gravity styles implement the
-// client interfaces; fix sph/astro finds them at init (pair style, its hybrid sub-styles, kspace
+// What the integrator (fix sph/astro) and the force styles below it tell each other, without
+// knowing each other's classes: the particles active in a force evaluation (individual
+// timesteps), for a grid long-range solver with `longrange sync` when to compute, and the
+// solver's choices that a restart file carries. The gravity styles implement the client
+// interfaces; fix sph/astro finds them at init (pair style, its hybrid sub-styles, kspace
 // style) and calls them.
 
 #ifndef LMP_SPH_ASTRO_ACTIVE_SET_H
@@ -71,6 +72,25 @@ class LongRangeClient {
 
  protected:
   ~LongRangeClient() = default;
+};
+
+// A solver whose choices at a run's start (MSM: split radius and grid) a run continued from a
+// restart file must keep: fix sph/astro writes them into its restart record ...
+class ContinuationClient {
+ public:
+  virtual std::vector<double> continuation_state() const = 0;
+
+ protected:
+  ~ContinuationClient() = default;
+};
+
+// ... and gives back those of the restart file read (null: none)
+class ContinuationStore {
+ public:
+  virtual const std::vector<double> *restart_continuation() const = 0;
+
+ protected:
+  ~ContinuationStore() = default;
 };
 
 // the clients among the pair style, its hybrid sub-styles and the kspace style

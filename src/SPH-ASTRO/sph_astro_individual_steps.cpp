@@ -54,6 +54,31 @@ void IndividualSteps::grow()
   }
 }
 
+// keywords that would do nothing, and a limiter off, under which a blast runs into gas whose
+// steps are long (Saitoh & Makino 2009, ApJ 697, L99): its energy goes wrong
+void IndividualSteps::warn_keywords(LAMMPS *lmp, const std::map<std::string, std::string> &given,
+                                    bool individual, bool long_range_sync, int levels)
+{
+  if (lmp->comm->me != 0) return;
+  for (const char *key : {"limiter", "kicks"})
+    if (!individual && given.count(key))
+      lmp->error->warning(FLERR,
+                          "fix sph/astro: {} {} is ignored with steps global (every particle "
+                          "takes the global leapfrog's step; it applies to steps individual)",
+                          key, given.at(key));
+  if (given.count("longdisplacement") && !long_range_sync)
+    lmp->error->warning(FLERR,
+                        "fix sph/astro: longdisplacement {} is ignored without longrange sync (it "
+                        "bounds the displacement between the long-range evaluations of sync)",
+                        given.at("longdisplacement"));
+  if (individual && levels == 0)
+    lmp->error->warning(FLERR,
+                        "fix sph/astro: limiter off with steps individual: a shock or blast that "
+                        "reaches particles on long steps is not felt by them until their steps "
+                        "end, and the energy is not conserved (a hot spot in cold gas lost 28 % "
+                        "of its energy in 200 steps); use limiter 1 or 2 where gas is heated fast");
+}
+
 void IndividualSteps::check_options(const PairOptions &o, bool entropy, int igroup)
 {
   const char *what = entropy ? "fix sph/astro thermal entropy"
@@ -856,6 +881,36 @@ void IndividualSteps::unpack_reverse_comm(int n, const int *list, const double *
   unpack_sparse(n, 1, buf, [&](int k, const double *in) {
     required_[list[k]] = std::max(required_[list[k]], *in);
   });
+}
+
+std::uint64_t IndividualSteps::local_hash() const
+{
+  StateIndex state;
+  if (!find_state(lmp, state)) return 0;
+  const double *u = atom->dvector[state.u];
+  std::uint64_t hash = 0;
+  for (int i = 0; i < atom->nlocal; i++) hash ^= atom_state_hash(atom->tag[i], atom->v[i], u[i]);
+  return hash;
+}
+
+void IndividualSteps::hand_over(std::uint64_t last_local_hash)
+{
+  StepIndex steps;
+  StateIndex state;
+  if (!started_ || !find_step_state(lmp, steps) || !find_state(lmp, state)) return;
+  if (local_hash() != last_local_hash) return;
+  started_ = false;
+  const double *begin = atom->dvector[steps.begin];
+  const int *mask = atom->mask;
+  double **v = atom->v;
+  double **vest = atom->darray[state.vest];
+  double *u = atom->dvector[state.u];
+  const double *uest = atom->dvector[state.uest];
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & owner_->groupbit) || begin[i] == ti_now_) continue;
+    for (int d = 0; d < 3; d++) v[i][d] = vest[i][d];
+    u[i] = uest[i];
+  }
 }
 
 void IndividualSteps::write_restart(std::vector<double> &list) const

@@ -63,6 +63,8 @@
 #include "sph_astro_active_set.h"
 #include "sph_astro_state.h"
 
+#include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -90,6 +92,11 @@ class IndividualSteps : protected LAMMPS_NS::Pointers, public LongRangeSchedule 
   // pair_kicks: pair forces integrated pair by pair (else each particle's on its own step)
   IndividualSteps(LAMMPS_NS::LAMMPS *lmp, LAMMPS_NS::Fix *owner, int levels, bool pair_kicks);
 
+  // fix sph/astro's keywords given (with their values) that do nothing (limiter and kicks with
+  // global steps, longdisplacement without longrange sync), and a limiter off (levels 0) with
+  // individual steps: warnings naming them (rank 0)
+  static void warn_keywords(LAMMPS_NS::LAMMPS *lmp, const std::map<std::string, std::string> &given,
+                            bool individual, bool long_range_sync, int levels);
   // what the hierarchy does not carry between a particle's evaluations is an error; the fix's
   // group (igroup) must hold all particles
   void check_options(const PairOptions &o, bool entropy, int igroup);
@@ -176,6 +183,16 @@ class IndividualSteps : protected LAMMPS_NS::Pointers, public LongRangeSchedule 
   void unpack_forward_comm(int n, int first, const double *buf);
   int pack_reverse_comm(int n, int first, double *buf);
   void unpack_reverse_comm(int n, const int *list, const double *buf);
+
+  // the hierarchy ends (its fix goes: unfix, or defined again): the particles inside their
+  // steps take their v and u at the current time, the predictions (as compute sph/astro/global
+  // reads them), so that what follows starts from that state; those at the end of a step have
+  // it. Only where the rank's atoms are as the last run left them (their local_hash(), taken
+  // then): v or u set since are the user's. No communication (a destructor calls it); finds the
+  // state by name, does nothing without it
+  void hand_over(std::uint64_t last_local_hash);
+  // XOR of atom_state_hash() over this rank's atoms (no communication)
+  std::uint64_t local_hash() const;
 
   void write_restart(std::vector<double> &list) const;
   // returns the number of values read

@@ -179,7 +179,9 @@ void ensure_step_state(LAMMPS *lmp, const char *caller)
                       "{}: a custom per-atom property d_{} already exists outside fix {}; "
                       "SPH-ASTRO owns the names d_step_*",
                       caller, name, STEPS_FIX_ID);
-  // (owned atoms only: no ghost reads the step state, and a ghost costs it no memory)
+  // (owned atoms only: no ghost reads the step state, and a ghost costs it no memory; not in
+  // data files: without the time line, which a data file cannot hold, the state means nothing,
+  // and its 53 values per atom make lines longer than read_data reads)
   lmp->modify->add_fix(std::string(STEPS_FIX_ID) +
                        " all sph/astro/owned d_step_begin d_step_end d_step_bin d_step_woken "
                        "d_step_end_then d2_step_accel 3 "
@@ -188,33 +190,44 @@ void ensure_step_state(LAMMPS *lmp, const char *caller)
                        "d_step_lead_u d_step_dudt_other d_step_pending_next d_step_dphidh "
                        "d2_step_pending " +
                        std::to_string(PENDING_SLOTS * PENDING_VALUES) + " d2_step_recent " +
-                       std::to_string(RECENT_VALUES));
+                       std::to_string(RECENT_VALUES) + " writedata no");
 }
 
-// XOR over atoms of a mixed 64-bit value (the splitmix64 finaliser)
-std::uint64_t state_hash(LAMMPS *lmp, const StateIndex &state, bool with_rho)
-{
-  auto mix = [](std::uint64_t z) {
+namespace {
+  // a mixed 64-bit value (the splitmix64 finaliser)
+  std::uint64_t mix(std::uint64_t z)
+  {
     z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
     z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
     return z ^ (z >> 31);
-  };
-  auto bits = [](double value) {
+  }
+  std::uint64_t bits(double value)
+  {
     std::uint64_t b;
     memcpy(&b, &value, sizeof(b));
     return b;
-  };
+  }
+}    // namespace
+
+std::uint64_t atom_state_hash(std::int64_t tag, const double *v, double u)
+{
+  std::uint64_t h = mix(static_cast<std::uint64_t>(tag));
+  h = mix(h ^ bits(v[0]));
+  h = mix(h ^ bits(v[1]));
+  h = mix(h ^ bits(v[2]));
+  return mix(h ^ bits(u));
+}
+
+// XOR over atoms of a mixed 64-bit value
+std::uint64_t state_hash(LAMMPS *lmp, const StateIndex &state, bool with_rho)
+{
   Atom *atom = lmp->atom;
   const double *u = atom->dvector[state.u];
   const double *rho = with_rho ? atom->dvector[state.rho] : nullptr;
   double **v = atom->v;
   std::uint64_t local = 0;
   for (int i = 0; i < atom->nlocal; i++) {
-    std::uint64_t h = mix(static_cast<std::uint64_t>(atom->tag[i]));
-    h = mix(h ^ bits(v[i][0]));
-    h = mix(h ^ bits(v[i][1]));
-    h = mix(h ^ bits(v[i][2]));
-    h = mix(h ^ bits(u[i]));
+    std::uint64_t h = atom_state_hash(atom->tag[i], v[i], u[i]);
     if (rho) h = mix(h ^ bits(rho[i]));
     local ^= h;
   }
@@ -237,8 +250,9 @@ void ensure_long_range_state(LAMMPS *lmp, const char *caller)
                     "{}: a custom per-atom property d2_step_accel_long already exists outside "
                     "fix {}; SPH-ASTRO owns the names d_step_*",
                     caller, LONG_RANGE_FIX_ID);
+  // (not in data files either: it belongs to the time line of the steps)
   lmp->modify->add_fix(std::string(LONG_RANGE_FIX_ID) +
-                       " all sph/astro/owned d2_step_accel_long 3");
+                       " all sph/astro/owned d2_step_accel_long 3 writedata no");
 }
 
 int find_long_range_state(LAMMPS *lmp)

@@ -138,6 +138,9 @@ bool find_step_state(LAMMPS_NS::LAMMPS *lmp, StepIndex &idx);
 // order-independent hash of every owned atom's ID, v and u (and rho with with_rho: integrated
 // with density continuity), over all ranks: whether the state changed between two runs
 std::uint64_t state_hash(LAMMPS_NS::LAMMPS *lmp, const StateIndex &state, bool with_rho);
+// the part of one atom (ID, v, u) in state_hash() without rho: state_hash() is their XOR over
+// the atoms
+std::uint64_t atom_state_hash(std::int64_t tag, const double *v, double u);
 // d2_step_accel_long (LONG_RANGE_FIX_ID): made if missing; its index (-1: none)
 void ensure_long_range_state(LAMMPS_NS::LAMMPS *lmp, const char *caller);
 int find_long_range_state(LAMMPS_NS::LAMMPS *lmp);

@@ -34,8 +34,8 @@ namespace {
 
 void SyncEnergy::start_run()
 {
-  largest_ = 0.0;
-  points_ = 0;
+  largest_ = NAN;
+  points_ = readings_ = 0;
 }
 
 void SyncEnergy::request(bigint step)
@@ -71,19 +71,36 @@ void SyncEnergy::measure(int groupbit, const EOS &eos, const StateIndex &state,
 {
   const double energy = total(groupbit, eos, state);
   if (!std::isfinite(energy)) return;
-  const double e0 = references.emplace("(synchronisation points)", energy).first->second;
-  latest_ = e0 != 0.0 ? (energy - e0) / std::fabs(e0) : energy - e0;
-  largest_ = std::fmax(largest_, std::fabs(latest_));
+  const auto [reference, set] = references.emplace("(synchronisation points)", energy);
   points_++;
+  if (set) {    // this point sets E0: its error is 0 by definition, no reading
+    reference_step_ = update->ntimestep;
+    return;
+  }
+  const double e0 = reference->second;
+  latest_ = e0 != 0.0 ? (energy - e0) / std::fabs(e0) : energy - e0;
+  largest_ = std::isnan(largest_) ? std::fabs(latest_) : std::fmax(largest_, std::fabs(latest_));
+  readings_++;
 }
 
-void SyncEnergy::log_summary() const
+void SyncEnergy::log_summary(double dt_max, bigint steps) const
 {
-  if (comm->me != 0 || points_ == 0) return;
-  utils::logmesg(lmp,
-                 "fix sph/astro steps individual: relative energy error at the {} "
-                 "synchronisation points of the run: largest |error| {:.6e}, at the last {:.6e}\n",
-                 points_, largest_, latest_);
+  if (comm->me != 0 || (readings_ == 0 && steps == 0)) return;
+  if (readings_ > 0)
+    utils::logmesg(lmp,
+                   "fix sph/astro steps individual: relative energy error at the {} "
+                   "synchronisation points of the run: largest |error| {:.6e}, at the last "
+                   "{:.6e}\n",
+                   points_, largest_, latest_);
+  else
+    utils::logmesg(lmp,
+                   "fix sph/astro steps individual: no synchronisation point in this run after "
+                   "the one that set the reference energy{}: the energy error there was not "
+                   "measured (fix vector 9 and 10 are NaN; compute sph/astro/global's includes "
+                   "the predictions of the particles inside their steps). Every particle ends "
+                   "a step at each multiple of dt_max = {:.6g} of the time line; dtmax or tend "
+                   "gives more such points\n",
+                   reference_step_ >= 0 ? fmt::format(" (step {})", reference_step_) : "", dt_max);
 }
 
 }    // namespace SPHAstro

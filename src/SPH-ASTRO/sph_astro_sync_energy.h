@@ -19,6 +19,7 @@
 
 #include "pointers.h"
 
+#include <cmath>
 #include <map>
 #include <string>
 
@@ -39,9 +40,11 @@ class SyncEnergy : protected LAMMPS_NS::Pointers {
   // restart files) under a key that is no compute ID
   void measure(int groupbit, const EOS &eos, const StateIndex &state,
                std::map<std::string, double> &references);
-  // the run's figures in the log (rank 0)
-  void log_summary() const;
+  // the run's figures in the log (rank 0); dt_max: the top step, which every particle's step
+  // divides; steps: LAMMPS steps the run took
+  void log_summary(double dt_max, LAMMPS_NS::bigint steps) const;
 
+  // NaN where no point after the one that set E0 was measured (none is a reading of 0)
   double latest() const { return latest_; }
   double largest() const { return largest_; }
 
@@ -49,9 +52,11 @@ class SyncEnergy : protected LAMMPS_NS::Pointers {
   // E = sum_i m_i (v_i^2 / 2 + e(rho_i, u_i)) + W over the group at this step; NaN where the
   // potential energy was not tallied at it (collective)
   double total(int groupbit, const EOS &eos, const StateIndex &state);
-  double latest_ = 0.0;             // error at the latest point
-  double largest_ = 0.0;            // largest |error| of this run's points
-  LAMMPS_NS::bigint points_ = 0;    // synchronisation points of this run measured
+  double latest_ = NAN;                      // error at the latest point after the one that set E0
+  double largest_ = NAN;                     // largest |error| of this run's points
+  LAMMPS_NS::bigint points_ = 0;             // points of this run measured, the one that set E0 too
+  LAMMPS_NS::bigint readings_ = 0;           // ... after the one that set E0
+  LAMMPS_NS::bigint reference_step_ = -1;    // the step that set E0 (-1: another instance's)
 };
 
 }    // namespace SPHAstro
