@@ -716,10 +716,18 @@ TEST(GravityLongRangeSync, NeedsAGravitySolver)
   auto lmp = open_lammps();
   falling_ball(lmp, "30", "steps individual longrange sync");
   const auto err = error_of(lmp, "run 0");
-  EXPECT_NE(err.find("fix sph/astro: longrange sync needs kspace_style msm/sph/astro/gravity or "
-                     "pppm/sph/astro/gravity (kspace_style is none)"),
+  EXPECT_NE(err.find("fix sph/astro: longrange sync needs kspace_style msm/sph/astro/gravity, "
+                     "pppm/sph/astro/gravity or tree/sph/astro/gravity in a periodic box "
+                     "(kspace_style is none)"),
             std::string::npos)
       << err;
+  // the tree in an open box needs none
+  commands(lmp, {"kspace_style tree/sph/astro/gravity relative 0.002"});
+  const auto tree = error_of(lmp, "run 0");
+  EXPECT_NE(tree.find("(kspace_style is tree/sph/astro/gravity, open box); the tree in an open "
+                      "box computes the active particles only"),
+            std::string::npos)
+      << tree;
 }
 
 TEST(GravityPair, RestartContinuesBitForBit)

@@ -75,7 +75,8 @@ template <bool ZETA> void direct(const Cloud &c, int i, double a[3], double &phi
     double p, D;
     if (r < 2.0 * std::max(c.h[i], c.h[j])) {
       softened_pair_inside<true>(soft, r, c.h[i], c.h[j], p, D);
-      if (ZETA && r > 0.0) D += zeta_pair_term(KernelType::CUBIC, r, c.h[i], c.h[j], c.zo[i], c.zo[j]);
+      if (ZETA && r > 0.0)
+        D += zeta_pair_term(KernelType::CUBIC, r, c.h[i], c.h[j], c.zo[i], c.zo[j]);
     } else {
       p = -1.0 / r;
       D = 1.0 / (r * r);
@@ -143,7 +144,9 @@ TEST(GravityTree, EveryParticleOnceLeavesSmallChildrenPartitionTheirParent)
   ASSERT_EQ(t.size(), c.n());
   std::vector<int> seen(c.n(), 0);
   for (int k = 0; k < t.size(); k++) seen[t.index(k)]++;
-  EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int s) { return s == 1; }));
+  EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int s) {
+    return s == 1;
+  }));
   for (int k = 0; k < t.nodes(); k++) {
     const GravityNode &n = t.node(k);
     if (n.nchild == 0) {
@@ -263,8 +266,9 @@ TEST(GravityTree, RelativeCriterionFollowsAlpha)
   tree_sums<false>(t, geometric, 32, acc, pot);
   double amin = INFINITY;
   for (int i = 0; i < c.n(); i++)
-    amin = std::min(amin, std::sqrt(acc[3 * i] * acc[3 * i] + acc[3 * i + 1] * acc[3 * i + 1] +
-                                    acc[3 * i + 2] * acc[3 * i + 2]));
+    amin = std::min(amin,
+                    std::sqrt(acc[3 * i] * acc[3 * i] + acc[3 * i + 1] * acc[3 * i + 1] +
+                              acc[3 * i + 2] * acc[3 * i + 2]));
   // with the smallest |a| of the cloud for every group: stricter than per group, enough to
   // see alpha act
   OpeningCriterion tight, loose;

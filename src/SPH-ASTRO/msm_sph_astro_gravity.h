@@ -25,9 +25,10 @@ KSpaceStyle(msm/sph/astro/gravity,MSMSPHAstroGravity);
 
 namespace LAMMPS_NS {
 
-class MSMSPHAstroGravity : public MSM,
-                           public SPHAstro::LongRangeClient,
-                           public SPHAstro::ContinuationClient {
+class MSMSPHAstroGravity :
+    public MSM,
+    public SPHAstro::LongRangeClient,
+    public SPHAstro::ContinuationClient {
  public:
   MSMSPHAstroGravity(class LAMMPS *);
   void settings(int, char **) override;

@@ -47,8 +47,8 @@
 
 #include "pair_sph_astro.h"
 #include "sph_astro_gravity_kernel.h"
-#include "sph_astro_gravity_pair.h"
 #include "sph_astro_gravity_kspace.h"
+#include "sph_astro_gravity_pair.h"
 #include "sph_astro_options.h"
 
 #include "sph_astro_pair_coeff.h"
@@ -282,7 +282,7 @@ void PairSPHAstroGravity::init_style()
                  "tree/sph/astro/gravity or msm/sph/astro/gravity (open boundaries), or "
                  "pppm/sph/astro/gravity (periodic)",
                  style);
-    if (split_ != Split::TREE && R * hmax_all > cut_global_)
+    if ((split_ != Split::TREE || periodic_tree()) && R * hmax_all > cut_global_)
       error->all(FLERR,
                  "pair_style sph/astro/gravity: cutoff {} is shorter than the softening support "
                  "{} x h = {} of the largest h; the short-range part must cover it",
@@ -325,21 +325,21 @@ void PairSPHAstroGravity::compute(int eflag, int vflag)
   ev_init(eflag, vflag);
   // the tree (kspace tree/sph/astro/gravity) computes every pair; it takes zeta/Omega of the
   // owned atoms from here
+  // ghosts need this step's softening lengths (fix sph/astro/h may have changed them)
+  const bool ghosts = split_ == Split::EWALD || split_ == Split::MSM || periodic_tree();
+  if (have_state_ && ghosts) {
+    comm_stage_ = Stage::H;
+    comm->forward_comm(this);
+  }
   if (split_ == Split::TREE) {
     zeta_active_ = zeta_terms_apply();
     if (zeta_active_) compute_zeta();
     return;
   }
-  // ghosts need this step's softening lengths (fix sph/astro/h may have changed them)
-  if (have_state_) {
-    comm_stage_ = Stage::H;
-    comm->forward_comm(this);
-  }
   if (split_ == Split::NONE) gather_all();
   // individual timesteps: forces only for the pairs with an active atom, unless the virial or
   // per-atom energies are tallied (they need every pair's force)
-  active_pairs_only_ =
-      split_ == Split::NONE && !active_.all() && !vflag_either && !eflag_atom;
+  active_pairs_only_ = split_ == Split::NONE && !active_.all() && !vflag_either && !eflag_atom;
   zeta_active_ = zeta_terms_apply();
   if (zeta_active_) compute_zeta();
   const bool cubic = kernel_ == KernelType::CUBIC;
@@ -370,6 +370,11 @@ void PairSPHAstroGravity::compute(int eflag, int vflag)
    the zeta terms apply with pair sph/astro in grad-h mode (its extract_peratom("omega_valid")
    is non-null), unless switched off; its Omega and rho must be of this step
 ------------------------------------------------------------------------- */
+
+bool PairSPHAstroGravity::periodic_tree() const
+{
+  return split_ == Split::TREE && domain->xperiodic && domain->yperiodic && domain->zperiodic;
+}
 
 bool PairSPHAstroGravity::zeta_terms_apply()
 {
@@ -750,7 +755,8 @@ void *PairSPHAstroGravity::extract(const char *str, int &dim)
   }
   if (strcmp(str, "cut_coul") == 0) {
     const std::string kstyle = force->kspace ? force->kspace_style : "";
-    if (force->kspace && kstyle != "pppm/sph/astro/gravity" && kstyle != "msm/sph/astro/gravity")
+    if (force->kspace && kstyle != "pppm/sph/astro/gravity" && kstyle != "msm/sph/astro/gravity" &&
+        kstyle != "tree/sph/astro/gravity")
       error->all(FLERR,
                  "pair_style sph/astro/gravity: kspace_style {} is not a gravity solver; use "
                  "pppm/sph/astro/gravity (periodic) or msm/sph/astro/gravity (open boundaries)",

@@ -58,10 +58,12 @@ class PairSPHAstroGravity : public Pair, public SPHAstro::ActiveSetClient {
   // softening length of local or ghost atom i: d_h of the SPH state if > 0, else the fixed h
   double softening_length(int i) const;
   double cutoff() const { return cut_global_; }
-  // the cutoff LAMMPS' lists and ghost shell need: none with direct summation or the tree
+  // the cutoff LAMMPS' lists and ghost shell need: none with direct summation or the tree in an
+  // open box; the short range (ghosts as periodic images) with PPPM, MSM or the periodic tree
   double list_cutoff() const
   {
-    return (split_ == Split::NONE || split_ == Split::TREE) ? 0.0 : cut_global_;
+    return (split_ == Split::NONE || (split_ == Split::TREE && !periodic_tree())) ? 0.0
+                                                                                  : cut_global_;
   }
   // the adaptive-softening terms were part of the latest force evaluation
   bool zeta_active() const { return zeta_active_; }
@@ -71,6 +73,9 @@ class PairSPHAstroGravity : public Pair, public SPHAstro::ActiveSetClient {
   // long-range split of the active gravity kspace: none (direct summation within the
   // cutoff), Ewald/PPPM (erfc split), MSM (gamma split), or the tree, which computes all of it
   enum class Split { NONE = 0, EWALD = 1, MSM = 2, TREE = 3 };
+  // the tree's TreePM split in a periodic box: the short range on the tree over owned and
+  // ghost atoms (their h and zeta/Omega sent here), the long range by PPPM
+  bool periodic_tree() const;
 
  protected:
   double cut_global_;

@@ -17,6 +17,7 @@
 
 #include "atom.h"
 #include "comm.h"
+#include "domain.h"
 #include "error.h"
 #include "memory.h"
 #include "update.h"
@@ -125,7 +126,7 @@ void PairSPHAstroGravity::compute_zeta()
       zeta_[i] = -h[i] / (3.0 * rho[i]) * sums[i];
   }
   // zeta/Omega of the partners (the tree sends the owned atoms' values itself)
-  if (split_ == Split::TREE) {
+  if (split_ == Split::TREE && !periodic_tree()) {
     for (int i = 0; i < nlocal; i++) zeta_over_omega_[i] = zeta_[i] / omega[i];
   } else if (split_ == Split::NONE) {
     for (int i = nlocal; i < nlocal + atom->nghost; i++) zeta_[i] = 0.0;

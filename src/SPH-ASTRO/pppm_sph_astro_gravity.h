@@ -29,6 +29,14 @@ class PPPMSPHAstroGravity : public PPPM, public SPHAstro::LongRangeClient {
   void settings(int, char **) override;
   void init() override;
   void compute(int, int) override;
+  // the grid (as kspace_modify mesh), for the long range of kspace tree/sph/astro/gravity
+  void set_grid(int nx, int ny, int nz)
+  {
+    gridflag = 1;
+    nx_pppm = nx;
+    ny_pppm = ny;
+    nz_pppm = nz;
+  }
   // fix sph/astro longrange sync: compute where every particle ends its step (null: always)
   void set_long_range_schedule(SPHAstro::LongRangeSchedule *schedule) override
   {

@@ -194,6 +194,99 @@ class GravityInteractions {
     pot = sp;
   }
 
+  // the same for the short-range part of a TreePM split (periodic boxes, kspace
+  // tree/sph/astro/gravity with PPPM for the long range): the Newtonian -1/r replaced by
+  // g(r) = -erfc(g_e r)/r (Bagla 2002, J. Astrophys. Astron. 23, 185; Springel 2005, MNRAS 364,
+  // 1105, eq. 21), the multipoles expanded in it with, for E = 2 g_e/sqrt(pi) exp(-g_e^2 r^2),
+  //   D1 = (erfc + r E)/r^3,  D2 = -N/r^5,  N = 3 erfc + (3 r + 2 g_e^2 r^3) E,
+  //   D3 = (5 N + 4 g_e^4 r^5 E)/r^7
+  // (g_e -> 0: 1/r^3, -3/r^5, 15/r^7); particles and multipoles beyond rcut left out (a node
+  // across the cutoff is taken whole: erfc(g_e rcut) is of the order of PPPM's accuracy);
+  // inside the softening support the softened pair minus the long range -erf(g_e r)/r that
+  // PPPM supplies, as pair sph/astro/gravity's short range with PPPM. Scalar sums (erfc and exp
+  // in each term).
+  template <bool CUBIC, bool ZETA>
+  void evaluate_split(double xi, double yi, double zi, double hi, double zoi, int self,
+                      const SoftenedKernel &soft, KernelType kernel, double R, double g,
+                      double rcut, double acc[3], double &pot, double *virial = nullptr)
+  {
+    // virial: sum over the terms of r (x) a (per unit G and target mass), r = x_i - x_source
+    double v[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    auto tally = [&](double dx, double dy, double dz, double fx, double fy, double fz) {
+      v[0] += dx * fx;
+      v[1] += dy * fy;
+      v[2] += dz * fz;
+      v[3] += dx * fy;
+      v[4] += dx * fz;
+      v[5] += dy * fz;
+    };
+    constexpr double two_over_sqrtpi = 1.1283791670955126;
+    const double g2 = g * g;
+    double ax = 0.0, ay = 0.0, az = 0.0, phi = 0.0;
+    const double rcut2 = rcut * rcut;
+    for (int k = 0; k < nm_; k++) {
+      const double dx = xi - mx_[k], dy = yi - my_[k], dz = zi - mz_[k];
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      if (r2 >= rcut2) continue;    // (as a particle beyond the cutoff)
+      const double r = std::sqrt(r2), rinv = 1.0 / r, rinv2 = rinv * rinv;
+      const double erfc = std::erfc(g * r);
+      const double E = two_over_sqrtpi * g * std::exp(-g2 * r2);
+      const double D1 = (erfc + r * E) * rinv * rinv2;
+      const double N = 3.0 * erfc + (3.0 * r + 2.0 * g2 * r2 * r) * E;
+      const double D2 = -N * rinv2 * rinv2 * rinv;
+      const double D3 = (5.0 * N + 4.0 * g2 * g2 * r2 * r2 * r * E) * rinv2 * rinv2 * rinv2 * rinv;
+      const double sx = qxx_[k] * dx + qxy_[k] * dy + qxz_[k] * dz;
+      const double sy = qxy_[k] * dx + qyy_[k] * dy + qyz_[k] * dz;
+      const double sz = qxz_[k] * dx + qyz_[k] * dy + qzz_[k] * dz;
+      const double rsr = dx * sx + dy * sy + dz * sz;
+      const double tr = qxx_[k] + qyy_[k] + qzz_[k];
+      phi += -mm_[k] * erfc * rinv + 0.5 * (D2 * rsr + D1 * tr);
+      const double c = mm_[k] * D1 + 0.5 * (D3 * rsr + D2 * tr);
+      const double fx = -(c * dx + D2 * sx), fy = -(c * dy + D2 * sy), fz = -(c * dz + D2 * sz);
+      ax += fx;
+      ay += fy;
+      az += fz;
+      if (virial) tally(dx, dy, dz, fx, fy, fz);
+    }
+    for (int k = 0; k < np_; k++) {
+      if (self >= 0 && pid_[k] == self) continue;
+      const double dx = xi - px_[k], dy = yi - py_[k], dz = zi - pz_[k];
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      if (r2 >= rcut2) continue;
+      const double r = std::sqrt(r2);
+      const double hj = ph_[k], rs = R * std::max(hi, hj);
+      double e, D;
+      if (r < rs) {
+        double phij, dphi;
+        softened_pair_inside<CUBIC>(soft, r, hi, hj, phij, dphi);
+        if (r == 0.0) {    // coincident: finite potential, no force
+          phi += pm_[k] * (phij + two_over_sqrtpi * g);
+          continue;
+        }
+        const double erfc_r = std::erfc(g * r) / r;
+        e = phij + 1.0 / r - erfc_r;
+        D = dphi - 1.0 / r2 + erfc_r / r + two_over_sqrtpi * g * std::exp(-g2 * r2) / r;
+        if (ZETA) D += zeta_pair_term(kernel, r, hi, hj, zoi, pzo_[k]);
+      } else {
+        const double erfc_r = std::erfc(g * r) / r;
+        e = -erfc_r;
+        D = erfc_r / r + two_over_sqrtpi * g * std::exp(-g2 * r2) / r;
+      }
+      D *= pm_[k] / r;
+      phi += pm_[k] * e;
+      ax -= D * dx;
+      ay -= D * dy;
+      az -= D * dz;
+      if (virial) tally(dx, dy, dz, -D * dx, -D * dy, -D * dz);
+    }
+    acc[0] = ax;
+    acc[1] = ay;
+    acc[2] = az;
+    pot = phi;
+    if (virial)
+      for (int c = 0; c < 6; c++) virial[c] = v[c];
+  }
+
   // M4: the pairs inside the softening support gathered, then summed in vector lanes with the
   // closed forms of SoftenedCubic and KernelCubic::dw evaluated without branches (the same
   // polynomials; a pair at r = 0 has its potential and no force)

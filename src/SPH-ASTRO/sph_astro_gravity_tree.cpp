@@ -107,7 +107,7 @@ void GravityTree::make_structure(int n, const double *px, const double *py, cons
     keys_[i] = key;
   }
   std::iota(perm_.begin(), perm_.end(), 0);
-  std::sort(perm_.begin(), perm_.end(), [&](int a, int b) {
+  std::stable_sort(perm_.begin(), perm_.end(), [&](int a, int b) {
     return keys_[a] != keys_[b] ? keys_[a] < keys_[b] : tie[a] < tie[b];
   });
   // keys and positions in tree order
@@ -408,10 +408,20 @@ void GravityTree::walk(const TargetBox &box, const OpeningCriterion &crit,
   std::vector<int> &stack = stack_;
   stack.clear();
   stack.push_back(0);
+  const bool cut = std::isfinite(crit.cutoff);
+  const double cutoff2 = crit.cutoff * crit.cutoff;
   while (!stack.empty()) {
     const int k = stack.back();
     stack.pop_back();
     const GravityNode &n = nodes_[k];
+    if (cut) {    // the nearest points of the two boxes
+      double d2 = 0.0;
+      for (int d = 0; d < 3; d++) {
+        const double e = std::max(std::max(n.lo[d] - box.hi[d], box.lo[d] - n.hi[d]), 0.0);
+        d2 += e * e;
+      }
+      if (d2 >= cutoff2) continue;
+    }
     if (accepted(n, box, crit))
       accepted_nodes.push_back(k);
     else if (n.nchild == 0)

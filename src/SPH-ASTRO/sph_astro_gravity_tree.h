@@ -80,7 +80,7 @@ struct GravityNode {
 };
 
 // a group of targets: the box holding them, their largest softening length and, for the
-// relative criterion, their smallest acceleration at the last evaluation
+// relative criterion, their smallest acceleration at the last evaluation (0: unknown)
 struct TargetBox {
   double lo[3], hi[3];
   double hmax;
@@ -93,6 +93,7 @@ struct OpeningCriterion {
   double alpha = 0.0;            // > 0: relative criterion G M b_max^3 / d^5 <= alpha |a_old|
   double G = 1.0;                // gravitational constant (relative criterion)
   double kernel_radius = 2.0;    // R: the softening support is R h
+  double cutoff = INFINITY;      // nodes farther than this from the targets' box are left out
 };
 
 class GravityTree {
@@ -131,7 +132,8 @@ class GravityTree {
   int depth() const { return depth_; }
 
   // the accepted nodes (their multipoles serve every target of the box) and the leaves whose
-  // items are summed one by one, in a fixed order (depth first)
+  // items are summed one by one, in a fixed order (depth first); nodes whose bounding box lies
+  // crit.cutoff or farther from the targets' box are left out
   void walk(const TargetBox &box, const OpeningCriterion &crit, std::vector<int> &accepted,
             std::vector<int> &leaves) const;
   // is node k's multipole accepted for every point of box

@@ -96,14 +96,21 @@ void IndividualSteps::check_options(const PairOptions &o, bool entropy, int igro
                "fix sph/astro steps individual: group {} must hold all particles (each pair "
                "is evaluated when one of its particles is active)",
                group->names[igroup]);
+  // (the tree's own part follows the active particles: only the PPPM part of its periodic
+  // TreePM can wait for synchronisation points)
+  const bool periodic = domain->xperiodic && domain->yperiodic && domain->zperiodic;
   if (long_range_ &&
       !(force->kspace &&
         (utils::strmatch(force->kspace_style, "^msm/sph/astro/gravity") ||
-         utils::strmatch(force->kspace_style, "^pppm/sph/astro/gravity"))))
+         utils::strmatch(force->kspace_style, "^pppm/sph/astro/gravity") ||
+         (periodic && utils::strmatch(force->kspace_style, "^tree/sph/astro/gravity")))))
     error->all(FLERR,
-               "fix sph/astro: longrange sync needs kspace_style msm/sph/astro/gravity or "
-               "pppm/sph/astro/gravity (kspace_style is {})",
-               force->kspace ? force->kspace_style : "none");
+               "fix sph/astro: longrange sync needs kspace_style msm/sph/astro/gravity, "
+               "pppm/sph/astro/gravity or tree/sph/astro/gravity in a periodic box (kspace_style "
+               "is {}{}); the tree in an open box computes the active particles only and needs "
+               "no sync",
+               force->kspace ? force->kspace_style : "none",
+               force->kspace && !periodic ? ", open box" : "");
 }
 
 void IndividualSteps::init(const StateIndex &state, bool state_unchanged)

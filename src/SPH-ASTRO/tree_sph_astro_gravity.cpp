@@ -31,10 +31,17 @@
 // active ones only (sph_astro_active_set.h); all of them when the energy or virial is tallied.
 // Targets are taken in groups of at most `group` particles of one tree node, one walk per
 // group (Barnes 1990).
+//
+// Periodic boxes (TreePM; Bagla 2002, J. Astrophys. Astron. 23, 185; Springel 2005, MNRAS 364,
+// 1105, sec. 3.2): PPPM (pppm/sph/astro/gravity, keyword pm ACCURACY) supplies
+// -G m_i m_j erf(g r)/r over all pairs and images, the tree the rest within the pair style's
+// cutoff, as pair sph/astro/gravity's short range does with PPPM; its tree holds the owned atoms
+// and LAMMPS' ghost atoms (the periodic images within the cutoff), so no exchange is needed.
 
 #include "tree_sph_astro_gravity.h"
 
 #include "pair_sph_astro_gravity.h"
+#include "pppm_sph_astro_gravity.h"
 #include "sph_astro_gravity_kernel.h"
 #include "sph_astro_gravity_kspace.h"
 #include "sph_astro_kernel.h"
@@ -64,6 +71,16 @@ TreeSPHAstroGravity::TreeSPHAstroGravity(LAMMPS *lmp) : KSpace(lmp)
   // none of LAMMPS' Coulomb solver flags: pair sph/astro/gravity is checked in init()
   ewaldflag = pppmflag = msmflag = 0;
   accuracy_relative = 0.0;
+}
+
+TreeSPHAstroGravity::~TreeSPHAstroGravity()
+{
+  delete pm_;
+}
+
+void TreeSPHAstroGravity::set_long_range_schedule(LongRangeSchedule *schedule)
+{
+  if (pm_) pm_->set_long_range_schedule(schedule);
 }
 
 /* ----------------------------------------------------------------------
@@ -107,13 +124,21 @@ void TreeSPHAstroGravity::settings(int narg, char **arg)
       if (group_size_ < 1 || group_size_ > 4096)
         error->all(FLERR, "{}: group = {} must be in 1..4096 (targets per tree walk)", STYLE,
                    arg[iarg + 1]);
+    } else if (key == "pm") {
+      const double accuracy = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(accuracy > 0.0 && accuracy < 1.0))
+        error->all(FLERR,
+                   "{}: pm accuracy = {} must be in (0, 1) (the relative force error of PPPM's "
+                   "long range in a periodic box, e.g. 1e-4)",
+                   STYLE, arg[iarg + 1]);
+      pm_accuracy_ = arg[iarg + 1];
     } else if (key == "theta")
       error->all(FLERR,
                  "{}: keyword theta belongs to the relative criterion (the opening angle of a "
                  "particle's first evaluation); with geometric the angle is its value",
                  STYLE);
     else
-      error->all(FLERR, "{}: unknown keyword '{}'; allowed: theta, leaf, group", STYLE, key);
+      error->all(FLERR, "{}: unknown keyword '{}'; allowed: theta, leaf, group, pm", STYLE, key);
     iarg += 2;
   }
   local_ = GravityTree(leaf_size_);
@@ -143,10 +168,11 @@ void TreeSPHAstroGravity::init()
     error->all(FLERR, "{}: dimension {} not supported (3d Newtonian gravity)", STYLE,
                domain->dimension);
   if (domain->triclinic) error->all(FLERR, "{}: triclinic boxes are not supported", STYLE);
-  if (domain->xperiodic || domain->yperiodic || domain->zperiodic)
+  periodic_ = domain->xperiodic && domain->yperiodic && domain->zperiodic;
+  if (!periodic_ && (domain->xperiodic || domain->yperiodic || domain->zperiodic))
     error->all(FLERR,
-               "{}: boundary {} is periodic; the tree sums over open boundaries (f, s or m in "
-               "x, y and z); for periodic boxes use kspace_style pppm/sph/astro/gravity",
+               "{}: boundary {} is periodic along some axes only; the tree takes open "
+               "boundaries (f, s or m) in x, y and z, or periodic ones in all three (TreePM)",
                STYLE, boundary_string(lmp));
   pair_ = dynamic_cast<PairSPHAstroGravity *>(force->pair_match("^sph/astro/gravity$", 0, 0));
   if (!pair_)
@@ -155,6 +181,23 @@ void TreeSPHAstroGravity::init()
                "for G, the kernel and the softening lengths",
                STYLE);
   if (slabflag) error->all(FLERR, "{}: kspace_modify slab is not supported", STYLE);
+  crit_.cutoff = INFINITY;
+  if (periodic_) {
+    // the long range: PPPM with this style's order and (kspace_modify mesh) grid
+    if (!pm_) pm_ = new PPPMSPHAstroGravity(lmp);
+    std::vector<char> accuracy(pm_accuracy_.begin(), pm_accuracy_.end());
+    accuracy.push_back('\0');
+    char *args[1] = {accuracy.data()};
+    pm_->settings(1, args);
+    pm_->order = order;
+    if (gridflag) pm_->set_grid(nx_pppm, ny_pppm, nz_pppm);
+    pm_->init();
+    int dim;
+    crit_.cutoff = *static_cast<double *>(force->pair->extract("cut_coul", dim));
+  } else {
+    delete pm_;
+    pm_ = nullptr;
+  }
   active_ = ActiveSet();    // all active until fix sph/astro says otherwise
   built_ = false;
   accel_index_ = -1;
@@ -166,6 +209,12 @@ void TreeSPHAstroGravity::init()
                  ACCEL_NAME, ACCEL_FIX_ID);
   }
   builds_ = evaluations_ = target_sum_ = multipole_sum_ = particle_sum_ = imported_sum_ = 0.0;
+  if (comm->me == 0 && periodic_)
+    utils::logmesg(lmp,
+                   "tree/sph/astro/gravity: TreePM in a periodic box, short range within {} on "
+                   "the tree, long range by PPPM (g_ewald {:.8g}, grid {} {} {}, accuracy {})\n",
+                   crit_.cutoff, pm_->g_ewald, pm_->nx_pppm, pm_->ny_pppm, pm_->nz_pppm,
+                   pm_accuracy_);
   if (comm->me == 0)
     utils::logmesg(lmp, "tree/sph/astro/gravity: quadrupole tree, {}, leaf {}, group {}\n",
                    crit_.alpha > 0.0
@@ -178,16 +227,23 @@ void TreeSPHAstroGravity::init()
 
 /* ---------------------------------------------------------------------- */
 
+void TreeSPHAstroGravity::setup()
+{
+  if (pm_) pm_->setup();
+}
+
+// the tree over the owned atoms (and in a periodic box the ghosts: images of the same atom
+// have its tag, and the build keeps their order)
 void TreeSPHAstroGravity::build_local()
 {
-  const int nlocal = atom->nlocal;
-  std::vector<int64_t> tie(nlocal);
-  built_tags_.resize(nlocal);
-  for (int i = 0; i < nlocal; i++) {
+  const int n = sources();
+  std::vector<int64_t> tie(n);
+  built_tags_.resize(n);
+  for (int i = 0; i < n; i++) {
     tie[i] = static_cast<int64_t>(atom->tag[i]);
     built_tags_[i] = atom->tag[i];
   }
-  local_.build(nlocal, atom->x, tie.data());
+  local_.build(n, atom->x, tie.data());
   local_.groups(group_size_, groups_);
   built_ = true;
   builds_ += 1.0;
@@ -197,23 +253,24 @@ void TreeSPHAstroGravity::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
   const int nlocal = atom->nlocal;
+  const int n = sources();
   crit_.G = pair_->gravity_constant();
   crit_.kernel_radius = kernel_radius(pair_->kernel());
 
   // the structure of the last re-neighbouring, while the atoms are the same in the same slots
-  bool rebuild = !built_ || neighbor->ago == 0 || static_cast<int>(built_tags_.size()) != nlocal;
+  bool rebuild = !built_ || neighbor->ago == 0 || static_cast<int>(built_tags_.size()) != n;
   const tagint *tag = atom->tag;
-  for (int i = 0; i < nlocal && !rebuild; i++) rebuild = tag[i] != built_tags_[i];
+  for (int i = 0; i < n && !rebuild; i++) rebuild = tag[i] != built_tags_[i];
   if (rebuild) build_local();
 
-  mass_.resize(nlocal);
-  soft_.resize(nlocal);
-  zo_.resize(nlocal);
+  mass_.resize(n);
+  soft_.resize(n);
+  zo_.resize(n);
   const double *rmass = atom->rmass;
   const double *mass = atom->mass;
   const int *type = atom->type;
   const double *zo = pair_->zeta_over_omega();
-  for (int i = 0; i < nlocal; i++) {
+  for (int i = 0; i < n; i++) {
     mass_[i] = rmass ? rmass[i] : mass[type[i]];
     soft_[i] = pair_->softening_length(i);
     if (!(soft_[i] > 0.0) || !std::isfinite(soft_[i]))
@@ -228,10 +285,13 @@ void TreeSPHAstroGravity::compute(int eflag, int vflag)
   // targets: every particle, or the active ones (the energy and virial need every one)
   const bool every = active_.all() || eflag_either || vflag_either;
   const int *mask = atom->mask;
-  target_.resize(nlocal);
-  for (int k = 0; k < nlocal; k++) target_[k] = every || active_.active(local_.index(k), mask);
+  target_.resize(n);
+  for (int k = 0; k < n; k++) {
+    const int i = local_.index(k);
+    target_[k] = i < nlocal && (every || active_.active(i, mask));
+  }
 
-  exchange();
+  if (!periodic_) exchange();
 
   const bool cubic = pair_->kernel() == KernelType::CUBIC;
   const bool zeta = zo != nullptr;
@@ -244,15 +304,28 @@ void TreeSPHAstroGravity::compute(int eflag, int vflag)
   else
     evaluate<false, false>();
 
+  // TreePM: the long range (its energy and virial are summed over the ranks)
+  double pm_energy = 0.0, pm_virial[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  if (pm_) {
+    pm_->compute(eflag, vflag);
+    pm_energy = pm_->energy;
+    for (int k = 0; k < 6; k++) pm_virial[k] = pm_->virial[k];
+    if (eflag_atom)
+      for (int i = 0; i < nlocal; i++) eatom[i] += pm_->eatom[i];
+    if (vflag_atom)
+      for (int i = 0; i < nlocal; i++)
+        for (int k = 0; k < 6; k++) vatom[i][k] += pm_->vatom[i][k];
+  }
+
   if (eflag_global) {
     double all;
     MPI_Allreduce(&energy, &all, 1, MPI_DOUBLE, MPI_SUM, world);
-    energy = all;
+    energy = all + pm_energy;
   }
   if (vflag_global) {
     double all[6];
     MPI_Allreduce(virial, all, 6, MPI_DOUBLE, MPI_SUM, world);
-    for (int k = 0; k < 6; k++) virial[k] = all[k];
+    for (int k = 0; k < 6; k++) virial[k] = all[k] + pm_virial[k];
   }
 }
 
@@ -397,9 +470,14 @@ template <bool CUBIC, bool ZETA> void TreeSPHAstroGravity::evaluate()
     for (int k = n.first; k < n.first + n.count; k++) {
       if (!target_[k]) continue;
       const int i = local_.index(k);
-      double acc[3], pot;
-      lists_.evaluate<CUBIC, ZETA>(lx[k], ly[k], lz[k], lh[k], lzo[k], k, soft, kernel, R, acc,
-                                   pot);
+      double acc[3], pot, pair_virial[6];
+      if (periodic_)
+        lists_.evaluate_split<CUBIC, ZETA>(lx[k], ly[k], lz[k], lh[k], lzo[k], k, soft, kernel, R,
+                                           pm_->g_ewald, crit_.cutoff, acc, pot,
+                                           vflag_either ? pair_virial : nullptr);
+      else
+        lists_.evaluate<CUBIC, ZETA>(lx[k], ly[k], lz[k], lh[k], lzo[k], k, soft, kernel, R, acc,
+                                     pot);
       const double Gm = G * lm[k];
       const double fx = Gm * acc[0], fy = Gm * acc[1], fz = Gm * acc[2];
       f[i][0] += fx;
@@ -410,21 +488,24 @@ template <bool CUBIC, bool ZETA> void TreeSPHAstroGravity::evaluate()
         if (eflag_global) energy += e;
         if (eflag_atom) eatom[i] += e;
       }
-      if (vflag_global) {
-        virial[0] += lx[k] * fx;
-        virial[1] += ly[k] * fy;
-        virial[2] += lz[k] * fz;
-        virial[3] += lx[k] * fy;
-        virial[4] += lx[k] * fz;
-        virial[5] += ly[k] * fz;
-      }
-      if (vflag_atom) {
-        vatom[i][0] += lx[k] * fx;
-        vatom[i][1] += ly[k] * fy;
-        vatom[i][2] += lz[k] * fz;
-        vatom[i][3] += lx[k] * fy;
-        vatom[i][4] += lx[k] * fz;
-        vatom[i][5] += ly[k] * fz;
+      if (vflag_either) {
+        // open boundaries: sum_i x_i F_i (= sum over pairs of r_ij F_ij); periodic: half of
+        // each pair's r_ij F_ij (both atoms of a pair are targets somewhere)
+        double v[6];
+        if (periodic_)
+          for (int c = 0; c < 6; c++) v[c] = 0.5 * Gm * pair_virial[c];
+        else {
+          v[0] = lx[k] * fx;
+          v[1] = ly[k] * fy;
+          v[2] = lz[k] * fz;
+          v[3] = lx[k] * fy;
+          v[4] = lx[k] * fz;
+          v[5] = ly[k] * fz;
+        }
+        if (vflag_global)
+          for (int c = 0; c < 6; c++) virial[c] += v[c];
+        if (vflag_atom)
+          for (int c = 0; c < 6; c++) vatom[i][c] += v[c];
       }
       if (accel) accel[i] = G * std::sqrt(acc[0] * acc[0] + acc[1] * acc[1] + acc[2] * acc[2]);
     }
@@ -461,6 +542,7 @@ std::string TreeSPHAstroGravity::run_summary()
 double TreeSPHAstroGravity::memory_usage()
 {
   return local_.memory_usage() + imported_.memory_usage() + lists_.memory_usage() +
+      (pm_ ? pm_->memory_usage() : 0.0) +
       (mass_.capacity() + soft_.capacity() + zo_.capacity()) * sizeof(double) +
       built_tags_.capacity() * sizeof(tagint) + target_.capacity() +
       (groups_.capacity() + accepted_.capacity() + leaves_.capacity()) * sizeof(int) +

@@ -18,6 +18,7 @@ KSpaceStyle(tree/sph/astro/gravity,TreeSPHAstroGravity);
 #ifndef LMP_TREE_SPH_ASTRO_GRAVITY_H
 #define LMP_TREE_SPH_ASTRO_GRAVITY_H
 
+#include "atom.h"
 #include "kspace.h"
 #include "sph_astro_active_set.h"
 #include "sph_astro_gravity_interactions.h"
@@ -28,18 +29,25 @@ KSpaceStyle(tree/sph/astro/gravity,TreeSPHAstroGravity);
 
 namespace LAMMPS_NS {
 
-class TreeSPHAstroGravity : public KSpace, public SPHAstro::ActiveSetClient {
+class TreeSPHAstroGravity :
+    public KSpace,
+    public SPHAstro::ActiveSetClient,
+    public SPHAstro::LongRangeClient {
  public:
   TreeSPHAstroGravity(class LAMMPS *);
+  ~TreeSPHAstroGravity() override;
 
   void settings(int, char **) override;
   void init() override;
-  void setup() override {}
+  void setup() override;
   void compute(int, int) override;
   double memory_usage() override;
 
   void set_active_set(const SPHAstro::ActiveSet &set) override { active_ = set; }
   std::string run_summary() override;
+  // periodic boxes: PPPM's long range may follow fix sph/astro longrange sync
+  void set_long_range_schedule(SPHAstro::LongRangeSchedule *schedule) override;
+  bool periodic() const { return periodic_; }
 
   // figures of the latest evaluation (tests and benchmarks): targets, their mean multipole and
   // particle interactions, items imported from other ranks, tree depth
@@ -60,6 +68,11 @@ class TreeSPHAstroGravity : public KSpace, public SPHAstro::ActiveSetClient {
   int group_size_ = 32;
   class PairSPHAstroGravity *pair_ = nullptr;
   SPHAstro::ActiveSet active_;
+  // periodic boxes (TreePM): PPPM for the long range, the tree over owned and ghost atoms for
+  // the short range within the pair style's cutoff
+  bool periodic_ = false;
+  class PPPMSPHAstroGravity *pm_ = nullptr;
+  std::string pm_accuracy_ = "1e-4";
 
   SPHAstro::GravityTree local_;       // the rank's particles (built at re-neighbouring)
   SPHAstro::GravityTree imported_;    // what other ranks send (built at every evaluation)
@@ -78,6 +91,8 @@ class TreeSPHAstroGravity : public KSpace, public SPHAstro::ActiveSetClient {
          particle_sum_ = 0.0, imported_sum_ = 0.0;
 
   double parse_theta(const char *text);
+  // the tree's atoms: the owned ones, and in a periodic box their ghosts too
+  int sources() const { return atom->nlocal + (periodic_ ? atom->nghost : 0); }
   void build_local();
   // the locally essential items of the other ranks (Salmon & Warren 1994)
   void exchange();
