@@ -243,7 +243,14 @@ SCENES: Dict[str, Scene] = {
             variants="steps=global;steps=individual;steps=individual,kicks=particle",
             reference_label="no peer code run", reference=(),
             notes="Evrard collapse with global and individual timesteps (pair kicks, the "
-                  "default, and particle kicks), 2 MPI ranks")}),
+                  "default, and particle kicks), 2 MPI ranks"),
+            "gravity": Preset(
+            resolutions=(8, 12, 16), np=2, var=("steps=individual", "thermoevery=50"),
+            variants="gravity=tree;gravity=direct;gravity=msm,hmax=0.35",
+            reference_label="no peer code run", reference=(),
+            notes="Evrard collapse to t = 3 with individual steps and each self-gravity solver: "
+                  "the tree (relative 0.002), direct summation, MSM 1e-5 (its short-range "
+                  "cutoff bounds h: hmax 0.35), 2 MPI ranks")}),
 
     "sod": Scene(
         input="examples/sod/in.sod", res_var="nx", out_var="out",

@@ -142,6 +142,11 @@ void GravityTree::make_structure(int n, const double *px, const double *py, cons
       }
       node.nparticles = np;
     }
+  // (the keys and positions of the build serve only the structure)
+  std::vector<uint64_t>().swap(keys_);
+  std::vector<double>().swap(sx_);
+  std::vector<double>().swap(sy_);
+  std::vector<double>().swap(sz_);
 }
 
 // node index over the sorted keys [first, first + count): a leaf, or children at the highest

@@ -209,6 +209,7 @@ void TreeSPHAstroGravity::init()
                  ACCEL_NAME, ACCEL_FIX_ID);
   }
   builds_ = evaluations_ = target_sum_ = multipole_sum_ = particle_sum_ = imported_sum_ = 0.0;
+  time_build_ = time_moments_ = time_exchange_ = time_walks_ = 0.0;
   if (comm->me == 0 && periodic_)
     utils::logmesg(lmp,
                    "tree/sph/astro/gravity: TreePM in a periodic box, short range within {} on "
@@ -261,7 +262,10 @@ void TreeSPHAstroGravity::compute(int eflag, int vflag)
   bool rebuild = !built_ || neighbor->ago == 0 || static_cast<int>(built_tags_.size()) != n;
   const tagint *tag = atom->tag;
   for (int i = 0; i < n && !rebuild; i++) rebuild = tag[i] != built_tags_[i];
+  double t0 = MPI_Wtime();
   if (rebuild) build_local();
+  double t1 = MPI_Wtime();
+  time_build_ += t1 - t0;
 
   mass_.resize(n);
   soft_.resize(n);
@@ -281,6 +285,8 @@ void TreeSPHAstroGravity::compute(int eflag, int vflag)
     zo_[i] = zo ? zo[i] : 0.0;
   }
   local_.refit(atom->x, mass_.data(), soft_.data(), zo ? zo_.data() : nullptr);
+  t0 = MPI_Wtime();
+  time_moments_ += t0 - t1;
 
   // targets: every particle, or the active ones (the energy and virial need every one)
   const bool every = active_.all() || eflag_either || vflag_either;
@@ -292,6 +298,8 @@ void TreeSPHAstroGravity::compute(int eflag, int vflag)
   }
 
   if (!periodic_) exchange();
+  t1 = MPI_Wtime();
+  time_exchange_ += t1 - t0;
 
   const bool cubic = pair_->kernel() == KernelType::CUBIC;
   const bool zeta = zo != nullptr;
@@ -303,6 +311,7 @@ void TreeSPHAstroGravity::compute(int eflag, int vflag)
     evaluate<false, true>();
   else
     evaluate<false, false>();
+  time_walks_ += MPI_Wtime() - t1;
 
   // TreePM: the long range (its energy and virial are summed over the ranks)
   double pm_energy = 0.0, pm_virial[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
@@ -525,18 +534,20 @@ template <bool CUBIC, bool ZETA> void TreeSPHAstroGravity::evaluate()
 
 std::string TreeSPHAstroGravity::run_summary()
 {
-  double local[6] = {evaluations_,   builds_,       target_sum_,
-                     multipole_sum_, particle_sum_, imported_sum_},
-         all[6];
-  MPI_Allreduce(local, all, 6, MPI_DOUBLE, MPI_SUM, world);
+  double local[10] = {evaluations_,  builds_,     target_sum_,    multipole_sum_, particle_sum_,
+                      imported_sum_, time_build_, time_moments_, time_exchange_, time_walks_},
+         all[10];
+  MPI_Allreduce(local, all, 10, MPI_DOUBLE, MPI_SUM, world);
   if (all[0] == 0.0) return {};
   const double ranks = comm->nprocs;
   return fmt::format(
       "tree/sph/astro/gravity: {:.0f} evaluations, {:.0f} tree builds per rank; {:.4g} "
       "targets per evaluation, each {:.1f} multipoles + {:.1f} particles; {:.4g} items "
-      "imported per rank and evaluation",
+      "imported per rank and evaluation; seconds per rank: builds {:.3g}, moments {:.3g}, "
+      "exchange {:.3g}, walks and sums {:.3g}",
       all[0] / ranks, all[1] / ranks, all[2] / (all[0] / ranks),
-      all[2] > 0.0 ? all[3] / all[2] : 0.0, all[2] > 0.0 ? all[4] / all[2] : 0.0, all[5] / all[0]);
+      all[2] > 0.0 ? all[3] / all[2] : 0.0, all[2] > 0.0 ? all[4] / all[2] : 0.0,
+      all[5] / all[0], all[6] / ranks, all[7] / ranks, all[8] / ranks, all[9] / ranks);
 }
 
 double TreeSPHAstroGravity::memory_usage()

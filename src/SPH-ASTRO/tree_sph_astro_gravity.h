@@ -89,6 +89,8 @@ class TreeSPHAstroGravity :
   Statistics last_;
   double builds_ = 0.0, evaluations_ = 0.0, target_sum_ = 0.0, multipole_sum_ = 0.0,
          particle_sum_ = 0.0, imported_sum_ = 0.0;
+  // seconds spent in the builds, the moments, the exchange and the walks with their sums
+  double time_build_ = 0.0, time_moments_ = 0.0, time_exchange_ = 0.0, time_walks_ = 0.0;
 
   double parse_theta(const char *text);
   // the tree's atoms: the owned ones, and in a periodic box their ghosts too
