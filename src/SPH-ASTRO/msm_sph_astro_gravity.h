@@ -29,11 +29,15 @@ class MSMSPHAstroGravity : public MSM {
   void init() override;
   void setup() override;
   void compute(int, int) override;
+  int modify_param(int, char **) override;
 
  protected:
   double G_;
-  double spacing_[3] = {0.0, 0.0, 0.0};    // finest grid spacing of the run start (0: none)
+  double spacing_[3] = {0.0, 0.0, 0.0};    // finest grid spacing chosen at init (0: none)
+  double points_init_ = 0.0;               // points of the finest grid chosen at init
+  double growth_ = 128.0;    // kspace_modify mesh/growth: bound on points / points_init_
 
+  void check_levels_at_init();
   void refine_grid_to_box();
   void set_grid_local_corners();
 };
