@@ -16,6 +16,7 @@
 #include "atom.h"
 #include "compute.h"
 #include "modify.h"
+#include "neighbor.h"
 
 #include <cmath>
 #include <cstdio>
@@ -304,3 +305,34 @@ TEST_F(Setting, ParticlesAtTheDhdtCapAreCountedAndReported)
   }
 }
 
+// fix sph/astro/h margin M: the ghost cutoff of a run's start serves h up to M x the largest h.
+// Within a run fix sph/astro/h widens it at most to what half the shortest periodic box length
+// serves (a kernel wider than that meets its particle's own images); at the start a margin
+// beyond the default 1.5 is bounded likewise, with a warning naming the keyword and value.
+// Without the bound margin 5 in this box of side 2 (h 0.9) made 34 429 ghosts for 32
+// particles, margin 20 1.7 million (500 MB), margin 100 hung in the set-up with gigabytes
+TEST_F(Setting, GhostCutoffOfALargeMarginIsBoundedByThePeriodicBox)
+{
+  const std::string log = "test_reliability_margin.log";
+  for (const char *margin : {"5", "100", "1.5"}) {
+    if (std::string(margin) != "5") {    // a fresh instance (the old one first: plugins are global)
+      lmp.reset();
+      SetUp();
+    }
+    sph();
+    commands(lmp,
+             {std::string("fix hvar all sph/astro/h iterate margin ") + margin, "log " + log,
+              "run 1", "log none"});
+    // half the box serves h up to (2 / 2 - skin 0.3) / R 2 = 0.35, below the default's room
+    // 1.5 x 0.9: ghost cutoff R 1.35 + skin = 3.0, as with the default margin
+    ASSERT_NEAR(lmp->neighbor->cutneighmax, 3.0, 1e-12) << "margin " << margin;
+    EXPECT_LT(lmp->atom->nghost, 4000) << "margin " << margin;
+    std::ifstream in(log);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(text.find(std::string("fix sph/astro/h margin ") + margin +
+                        ": the ghost cutoff for h up to") != std::string::npos,
+              std::string(margin) != "1.5")
+        << text;
+  }
+  std::remove(log.c_str());
+}

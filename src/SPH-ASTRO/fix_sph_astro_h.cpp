@@ -53,6 +53,7 @@
 #include "sph_astro_neighbour_lists.h"
 #include "sph_astro_options.h"
 #include "sph_astro_passes.h"
+#include "sph_astro_scheme.h"
 #include "sph_astro_state.h"
 #include "update.h"
 #include "utils.h"
@@ -73,7 +74,7 @@ FixSPHAstroH::FixSPHAstroH(LAMMPS *lmp, int narg, char **arg) :
   hfact_ = 1.2;
   tolerance_ = 1e-4;
   max_iterations_ = 30;
-  margin_ = 1.5;
+  margin_ = SPHAstro::DEFAULT_MARGIN;
   h_max_ = INFINITY;
   user_cutghost_ = 0.0;
   pending_cutoff_ = 0.0;

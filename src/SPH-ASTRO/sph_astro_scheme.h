@@ -22,6 +22,9 @@ namespace SPHAstro {
 
 struct PairOptions;
 
+// fix sph/astro/h margin: its default
+constexpr double DEFAULT_MARGIN = 1.5;
+
 struct Scheme {
   // smoothing length: fixed, evolved by dh/dt (both with h_ij = (h_i + h_j)/2 in every pair
   // term; fix sph/astro/h dhdt), or iterated with rho (W(h_i) and W(h_j), grad-h factor
