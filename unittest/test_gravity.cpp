@@ -889,6 +889,47 @@ TEST(GravityPair, RestartContinuesBitForBit)
   std::remove(restart.c_str());
 }
 
+// read_restart of pair_style hybrid/overlay: LAMMPS restores the sub-styles and their settings
+// but keeps no pair_coeff of hybrid styles in restart files, and a run stopped with "All pair
+// coeffs are not set". read_restart warns, naming the sub-styles' pair_coeff; a gravity kspace
+// style stops the run with an error saying so (before LAMMPS' check); with the pair_coeff
+// given again the run goes on
+TEST(GravityRestart, HybridPairCoeffsAreNamedAfterReadRestart)
+{
+  const std::string restart = "test_gravity_hybrid.restart", log = "test_gravity_hybrid.log";
+  {
+    auto lmp = open_lammps();
+    falling_ball(lmp, "1.5", "courant 0.3");
+    commands(lmp, {"run 1", "write_restart " + restart});
+  }
+  {
+    auto lmp = open_lammps();
+    commands(lmp, {"log " + log, "read_restart " + restart, "log none"});
+    std::ifstream in(log);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (const char *style : {"sph/astro", "sph/astro/gravity"})
+      EXPECT_NE(text.find(std::string("pair_style hybrid/overlay: sub-style ") + style +
+                          " restored from the restart file without pair_coeff"),
+                std::string::npos)
+          << text;
+    EXPECT_NE(text.find("pair_coeff * * sph/astro/gravity"), std::string::npos) << text;
+    commands(lmp, {"kspace_style msm/sph/astro/gravity 1e-5", "fix gas all sph/astro"});
+    const std::string message = error_of(lmp, "run 0");
+    EXPECT_NE(message.find("kspace_style msm/sph/astro/gravity: pair_style hybrid/overlay has no "
+                           "pair_coeff for type 1"),
+              std::string::npos)
+        << message;
+  }
+  auto lmp = open_lammps();
+  commands(lmp,
+           {"read_restart " + restart, "pair_coeff * * sph/astro",
+            "pair_coeff * * sph/astro/gravity", "kspace_style msm/sph/astro/gravity 1e-5",
+            "fix gas all sph/astro"});
+  EXPECT_EQ(error_of(lmp, "run 0"), "");
+  std::remove(restart.c_str());
+  std::remove(log.c_str());
+}
+
 // ----------------------------------------------------------------- bad input
 
 TEST(GravityErrors, MissingGInUnitsReal)

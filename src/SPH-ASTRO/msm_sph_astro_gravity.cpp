@@ -24,6 +24,7 @@
 
 #include "sph_astro_gravity_kspace.h"
 #include "sph_astro_individual_steps.h"
+#include "sph_astro_pair_coeff.h"
 #include "sph_astro_shrink_wrap.h"
 
 #include "atom.h"
@@ -153,6 +154,7 @@ void MSMSPHAstroGravity::init()
                "{}: boundary {} is periodic; MSM gravity needs non-periodic boundaries (f, s "
                "or m) in x, y and z (for periodic boxes use kspace_style pppm/sph/astro/gravity)",
                STYLE, boundary_string(lmp));
+  check_hybrid_coeffs(lmp, STYLE);
   G_ = gravity_constant(lmp, STYLE);
   masses_to_charges(lmp);
   {

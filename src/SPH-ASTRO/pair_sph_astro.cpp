@@ -546,6 +546,7 @@ void PairSPHAstro::read_restart_settings(FILE *fp)
   restart_variable_h_ = opt_->read_restart(lmp, fp);
   entropy_gamma_ = opt_->eos.gamma;    // of the run that wrote the file (thermal entropy: A)
   kernel_radius_ = opt_->kernel_radius();
+  warn_hybrid_restart(lmp, this, "sph/astro");
 }
 
 const SearchStatistics &PairSPHAstro::search_statistics() const
