@@ -1012,6 +1012,26 @@ TEST(GravityErrors, NonGravityKSpace)
   }
 }
 
+// an absurd accuracy: MSM adjusts its cutoff to 485 for a grid spacing of 1.5, and its direct
+// sums asked for a negative number of bytes ("Failed to allocate -67781918720 bytes"); the
+// error names the accuracy, the cutoff and the memory. 1e-10 runs (cutoff 37.6)
+TEST(GravityErrors, MSMAccuracyBeyondMemory)
+{
+  {
+    auto lmp = open_lammps();
+    cloud(lmp, false, 400, "sph/astro/gravity 3.0", "msm/sph/astro/gravity 1e-20");
+    const auto err = error_of(lmp, "run 0");
+    EXPECT_NE(err.find("kspace_style msm/sph/astro/gravity: its cutoff 485.561 spans 324 grid "
+                       "spacings"),
+              std::string::npos)
+        << err;
+    EXPECT_NE(err.find("the accuracy 1e-20 asks for that cutoff"), std::string::npos) << err;
+  }
+  auto lmp = open_lammps();
+  cloud(lmp, false, 400, "sph/astro/gravity 3.0", "msm/sph/astro/gravity 1e-10");
+  EXPECT_EQ(error_of(lmp, "run 0"), "");
+}
+
 TEST(GravityErrors, CutoffShorterThanSoftening)
 {
   auto lmp = open_lammps();

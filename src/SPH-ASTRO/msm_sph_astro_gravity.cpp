@@ -56,6 +56,9 @@ static constexpr int MAX_POINTS = 512;
 // a box LAMMPS will wrap at the run's setup to more than this factor longer or shorter along
 // an axis than at init has MSM choose its grid and cutoff for the wrapped box (init)
 static constexpr double WRAP_CHOICE = 2.0;
+// MSM's direct-sum weights (stencil points x levels) beyond this stop the run (7 arrays of
+// doubles: 0.9 GB)
+static constexpr double MAX_STENCIL = 16777216.0;
 // an atom farther from the centre of mass than this times the other atoms' RMS distance is
 // warned about at init (a uniform ball: 1.29; Evrard's profile: 1.41)
 static constexpr double FAR_ATOM = 10.0;
@@ -309,6 +312,7 @@ void MSMSPHAstroGravity::setup()
   // as the box changes, from the run's setup on
   const bool chosen = spacing_[0] > 0.0;
   if (chosen) refine_grid_to_box();
+  check_direct_stencil();
   MSM::setup();
   if (!chosen) {
     const int npoints[3] = {nx_msm[0], ny_msm[0], nz_msm[0]};
@@ -318,6 +322,35 @@ void MSMSPHAstroGravity::setup()
   deallocate();
   set_grid_local_corners();
   allocate();
+}
+
+/* ----------------------------------------------------------------------
+   MSM's direct sum on every level covers the cutoff a: a stencil of 8 (2 a / h + 1)^3 grid
+   points for the spacing h (MSM::setup), whose weights and those of the virial (7 arrays) it
+   keeps for every level. Too many spacings in the cutoff ask for more than any memory: the
+   accuracy 1e-20 made MSM choose a cutoff 485 for a spacing of 1.5 (2.2e9 points on each of 4
+   levels, whose byte count overflowed: "Failed to allocate -67781918720 bytes")
+------------------------------------------------------------------------- */
+
+void MSMSPHAstroGravity::check_direct_stencil()
+{
+  const double *prd = domain->prd;
+  const int npoints[3] = {nx_msm[0], ny_msm[0], nz_msm[0]};
+  double points = 8.0, spans = 0.0;
+  for (int d = 0; d < 3; d++) {
+    const double span = std::floor(2.0 * cutoff * npoints[d] / prd[d]);
+    points *= span + 1.0;
+    spans = std::max(spans, 0.5 * span);
+  }
+  if (points * levels <= MAX_STENCIL) return;
+  error->all(FLERR,
+             "{}: its cutoff {:.6g} spans {:.0f} grid spacings ({:.6g} {:.6g} {:.6g}), and its "
+             "direct sums would hold {:.3g} weights on each of {} levels ({:.3g} GB); the "
+             "accuracy {:g} asks for that cutoff: use a larger accuracy (1e-6 takes a cutoff of "
+             "about 9 spacings) or sum directly (pair_style sph/astro/gravity without "
+             "kspace_style)",
+             STYLE, cutoff, spans, prd[0] / npoints[0], prd[1] / npoints[1], prd[2] / npoints[2],
+             points, levels, 7.0 * 8.0 * points * levels / 1.0e9, accuracy_relative);
 }
 
 /* ----------------------------------------------------------------------

@@ -38,6 +38,7 @@ class MSMSPHAstroGravity : public MSM {
   double growth_ = 128.0;    // kspace_modify mesh/growth: bound on points / points_init_
 
   void check_levels_at_init();
+  void check_direct_stencil();
   void refine_grid_to_box();
   void set_grid_local_corners();
 };
