@@ -365,3 +365,30 @@ TEST(TwoDimensions, AtomOffThePlaneIsNamed)
     if (!bad.empty()) EXPECT_NE(message.find("set group all z 0.0"), std::string::npos) << message;
   }
 }
+
+// a box periodic in none: a support longer than the box diagonal reaches no further atom; margin
+// 1e10 asked for a ghost cutoff of 1.8e10, which on 2 MPI ranks overflowed LAMMPS' count of
+// ghost-exchange swaps, so that the ranks waited on each other for ever. The cap is bounded by
+// the diagonal, at the start and within a run, with the warning naming the margin
+TEST(GhostCutoff, LargeMarginInAnOpenBoxIsBoundedByTheDiagonal)
+{
+  const std::string log = "test_reliability_margin_open.log";
+  auto lmp = open_lammps();
+  commands(lmp,
+           {"units lj", "atom_style atomic", "atom_modify map array", "boundary s s s",
+            "lattice fcc 4.0", "region box block -2 2 -2 2 -2 2", "create_box 1 box",
+            "create_atoms 1 box", "mass 1 0.25", "pair_style " + std::string(PAIR),
+            "pair_coeff * *", "fix gas all sph/astro",
+            "fix hvar all sph/astro/h iterate margin 1e10", "set group all d_h 0.9",
+            "set group all d_u 1.0", "log " + log, "run 2", "log none"});
+  const double *prd = lmp->domain->prd;
+  const double diagonal = std::sqrt(prd[0] * prd[0] + prd[1] * prd[1] + prd[2] * prd[2]);
+  EXPECT_LE(lmp->neighbor->cutneighmax, diagonal + lmp->neighbor->skin + 1e-9);
+  std::ifstream in(log);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("fix sph/astro/h margin 10000000000: the ghost cutoff for h up to"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("beyond what the box diagonal"), std::string::npos) << text;
+  std::remove(log.c_str());
+}

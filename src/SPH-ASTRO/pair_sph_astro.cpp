@@ -189,31 +189,28 @@ void PairSPHAstro::init_style()
     error->all(FLERR, "pair_style sph/astro: no particle has h > 0 (set group all d_h VALUE)");
   // (an h above fix sph/astro/h hmax at the start keeps its value: the cap is not below it)
   h_cap_start_ = h_cap_ = MAX(hmax, MIN(scheme_->margin * hmax, scheme_->h_max));
-  // A margin beyond the default reaches at most what half the shortest periodic box length
-  // serves, the bound of fix sph/astro/h's widening within a run (a kernel wider than that
-  // meets its particle's own images); the default's room, DEFAULT_MARGIN x the largest h, stays
-  // for boxes too small for that. Margin 100 in a box of side 2 (h 0.9) asked for a ghost cutoff
-  // of 180, 2e8 ghost images of 32 particles; margin 20, 1.7 million (500 MB)
+  // A margin beyond the default reaches at most what half the shortest periodic box length,
+  // or the diagonal of a box periodic in none, serves (box_h_cap), the bound of fix
+  // sph/astro/h's widening within a run; the default's room, DEFAULT_MARGIN x the largest h,
+  // stays for boxes too small for that. Margin 100 in a box of side 2 (h 0.9) asked for a
+  // ghost cutoff of 180, 2e8 ghost images of 32 particles; margin 20, 1.7 million (500 MB)
   const double R = o.kernel_radius(), skin = neighbor->skin;
-  double h_cap_box = INFINITY;
   int axis = -1;
-  for (int d = 0; d < domain->dimension; d++)
-    if (domain->periodicity[d] && (0.5 * domain->prd[d] - skin) / R < h_cap_box) {
-      h_cap_box = (0.5 * domain->prd[d] - skin) / R;
-      axis = d;
-    }
+  const double h_cap_box = box_h_cap(lmp, R, skin, axis);
   const double h_cap_bound = MAX(h_cap_box, DEFAULT_MARGIN * hmax);
   const double h_cap_wanted = h_cap_start_;
   h_cap_start_ = h_cap_ = MAX(hmax, MIN(h_cap_wanted, h_cap_bound));
   if (h_cap_start_ < h_cap_wanted && comm->me == 0) {
+    const std::string box = axis >= 0
+        ? fmt::format("half the periodic box length {:.6g} in {}", domain->prd[axis], "xyz"[axis])
+        : fmt::format("the box diagonal {:.6g}", R * h_cap_box);
     error->warning(FLERR,
                    "fix sph/astro/h margin {}: the ghost cutoff for h up to {} x the largest h "
-                   "{:.6g} would be {:.6g}, beyond half the periodic box length {:.6g} in {}; "
-                   "the run starts with h up to {:.6g} (ghost cutoff {:.6g}): a margin beyond "
-                   "{} serves at most half the box, as within a run",
-                   scheme_->margin, scheme_->margin, hmax, R * h_cap_wanted + skin,
-                   domain->prd[axis], "xyz"[axis], h_cap_start_, R * h_cap_start_ + skin,
-                   DEFAULT_MARGIN);
+                   "{:.6g} would be {:.6g}, beyond what {} needs; the run starts with h up to "
+                   "{:.6g} (ghost cutoff {:.6g}): a margin beyond {} serves at most that, as "
+                   "within a run",
+                   scheme_->margin, scheme_->margin, hmax, R * h_cap_wanted + skin, box,
+                   h_cap_start_, R * h_cap_start_ + skin, DEFAULT_MARGIN);
     utils::flush_buffers(lmp);
   }
   // a run that continues one (restart file or the run before) keeps its h cap and ghost

@@ -47,6 +47,13 @@ struct Scheme {
 // so), checked against the options (PairOptions::check_scheme)
 Scheme read_scheme(LAMMPS_NS::LAMMPS *lmp, const PairOptions &options);
 
+// the largest h the ghost cutoff serves in this box, the bound of the h cap: with a periodic
+// dimension what half its shortest length L serves, (L/2 - skin)/R (a wider kernel meets its
+// particle's own images); periodic in none, what the box diagonal D serves, D/R (that support
+// reaches every atom in the box; one of 1e10 made LAMMPS' ghost exchange overflow its count of
+// swaps). axis: the periodic dimension that bounds it, -1 for the diagonal
+double box_h_cap(LAMMPS_NS::LAMMPS *lmp, double kernel_radius, double skin, int &axis);
+
 }    // namespace SPHAstro
 
 #endif
