@@ -276,9 +276,8 @@ void MSMSPHAstroGravity::check_levels_at_init()
   for (int d = 0; d < 3; d++)
     if (npoints[d] > MAX_POINTS)
       error->all(FLERR,
-                 "{}: the box {:.6g} x {:.6g} x {:.6g} around the atoms asks for {:.0f} grid "
-                 "points along {} for the accuracy, more than the {} LAMMPS' MSM takes (10 "
-                 "levels); {}: {}",
+                 "{}: the box {:.6g} x {:.6g} x {:.6g} asks for {:.0f} grid points along {} "
+                 "for the accuracy, more than the {} LAMMPS' MSM takes (10 levels); {}: {}",
                  STYLE, prd[0], prd[1], prd[2], npoints[d], axis[d], MAX_POINTS,
                  farthest_atom(lmp).text(), remedies(false));
 }
