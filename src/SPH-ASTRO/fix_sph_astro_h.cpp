@@ -224,12 +224,24 @@ void FixSPHAstroH::setup(int /*vflag*/)
   // particles held at the cap by the setup's iteration keep that h for one step
   int capped_local = pair_->h_statistics().capped, capped;
   MPI_Allreduce(&capped_local, &capped, 1, MPI_INT, MPI_SUM, world);
-  if (capped > 0 && pair_->h_cap() < h_max_ && comm->me == 0)
-    error->warning(FLERR,
-                   "fix sph/astro/h: {} particles need h beyond the cap {:.6g} at the setup of "
-                   "step {}; they keep the cap for one step, until the ghost cutoff is widened "
-                   "(a larger margin, now {}, avoids this)",
-                   capped, pair_->h_cap(), update->ntimestep, margin_);
+  int axis = -1;
+  const double box_cap =
+      SPHAstro::box_h_cap(lmp, pair_->kernel_radius(), neighbor->skin, axis) * (1.0 - 1e-12);
+  if (capped > 0 && pair_->h_cap() < h_max_ && comm->me == 0) {
+    if (pair_->h_cap() < box_cap)
+      error->warning(FLERR,
+                     "fix sph/astro/h: {} particles need h beyond the cap {:.6g} at the setup "
+                     "of step {}; they keep the cap for one step, until the ghost cutoff is "
+                     "widened (a larger margin, now {}, avoids this)",
+                     capped, pair_->h_cap(), update->ntimestep, margin_);
+    else
+      error->warning(FLERR,
+                     "fix sph/astro/h: {} particles need h beyond the cap {:.6g} at the setup "
+                     "of step {}; they are held there: the cap is not widened past what {} "
+                     "serves (h up to {:.6g})",
+                     capped, pair_->h_cap(), update->ntimestep,
+                     axis >= 0 ? "half the periodic box length" : "the box diagonal", box_cap);
+  }
 }
 
 void FixSPHAstroH::end_of_step()
