@@ -392,3 +392,22 @@ TEST(GhostCutoff, LargeMarginInAnOpenBoxIsBoundedByTheDiagonal)
   EXPECT_NE(text.find("beyond what the box diagonal"), std::string::npos) << text;
   std::remove(log.c_str());
 }
+
+// h that outgrows a cap the box does not let widen (hfact 3 in a periodic box of side 2): the
+// setup says the particles are held there (it promised a widening that never came)
+TEST_F(Setting, HeldAtTheBoxBoundIsSaid)
+{
+  const std::string log = "test_reliability_box_cap.log";
+  sph();
+  commands(lmp,
+           {"fix hvar all sph/astro/h iterate hfact 3.0", "set group all d_h 0.5", "log " + log,
+            "run 1", "log none"});
+  std::ifstream in(log);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("32 particles need h beyond the cap 0.75 at the setup of step 0; they are "
+                      "held there: the cap is not widened past what half the periodic box length "
+                      "serves (h up to 0.35)"),
+            std::string::npos)
+      << text;
+  std::remove(log.c_str());
+}
