@@ -28,6 +28,8 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <map>
 
 using namespace sph_astro_test;
@@ -61,14 +63,15 @@ void cloud(const std::unique_ptr<LAMMPS> &lmp, bool periodic, int n, const std::
             "thermo_modify norm no"});
 }
 
-// relative RMS difference of the forces from the reference compute's
-double force_error(const std::unique_ptr<LAMMPS> &lmp)
+// relative RMS difference of the forces from the reference compute's (atoms with IDs up to
+// max_id)
+double force_error(const std::unique_ptr<LAMMPS> &lmp, int max_id = 0)
 {
   auto *ref = lmp->modify->get_compute_by_id("ref");
   ref->compute_peratom();
   double d2 = 0.0, f2 = 0.0;
   for (int i = 0; i < lmp->atom->nlocal; i++)
-    for (int d = 0; d < 3; d++) {
+    for (int d = 0; d < 3 && (max_id == 0 || lmp->atom->tag[i] <= max_id); d++) {
       const double diff = lmp->atom->f[i][d] - ref->array_atom[i][d];
       d2 += diff * diff;
       f2 += ref->array_atom[i][d] * ref->array_atom[i][d];
@@ -186,6 +189,145 @@ TEST(GravityKSpaceGrowingBox, MSMKeepsItsGridSpacing)
   EXPECT_GT(lmp->domain->prd[0], 1.7 * box);
   EXPECT_LT(before, 3e-4);
   EXPECT_LT(after, 3e-4);
+}
+
+// a particle far from the rest when the run starts: LAMMPS wraps the box around it at the run's
+// setup, after MSM chose its grid and cutoff at init for the box as it was (12 long), and MSM
+// kept its number of points: the spacing along x grew with the box, and the other 400 atoms'
+// relative RMS force error was 1.6e-3 with the atom at x = 15 (box 21: grid refined to the
+// spacing of init) and 0.25 at x = 100 (box 106: grid and cutoff chosen for it). The atom at
+// 100, 25 times the others' RMS distance from the centre of mass, is named at init
+TEST(GravityKSpaceFarParticle, AtTheRunStartKeepsTheAccuracy)
+{
+  const std::string log = "test_gravity_far_atom.log";
+  for (const char *x : {"15", "100"}) {
+    auto lmp = open_lammps();
+    cloud(lmp, false, 400, "sph/astro/gravity 3.0", "msm/sph/astro/gravity 1e-4");
+    commands(lmp,
+             {"create_atoms 1 single 0 0 0 units box",
+              std::string("set atom 401 x ") + x + " d_h 0.5", "log " + log, "run 0", "log none"});
+    ASSERT_EQ(lmp->atom->natoms, 401);
+    const double err = force_error(lmp, 400);
+    std::printf("atom 401 at x = %s: the others' relative RMS force error %.3e\n", x, err);
+    EXPECT_LT(err, 3e-4) << "x = " << x;
+    std::ifstream in(log);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(text.find("kspace_style msm/sph/astro/gravity: atom 401 lies 99.8") !=
+                  std::string::npos,
+              std::string(x) == "100")
+        << text;
+  }
+  std::remove(log.c_str());
+}
+
+// a box so long that MSM would need more than its 10 levels (512 points along an axis) for the
+// accuracy: LAMMPS' MSM stopped with "Too many MSM grid levels" (and, as a library, freed its
+// levels twice when deleted: the heap was corrupted); the atom and the remedies are named. A
+// grid of more than 512 points given with kspace_modify mesh is refused likewise
+TEST(GravityKSpaceFarParticle, BeyondMSMsLevelsIsNamed)
+{
+  {
+    auto lmp = open_lammps();
+    cloud(lmp, false, 4000, "sph/astro/gravity 3.0", "msm/sph/astro/gravity 1e-4");
+    commands(lmp, {"create_atoms 1 single 0 0 0 units box", "set atom 4001 x 10000 d_h 0.5"});
+    const std::string message = error_of(lmp, "run 0");
+    EXPECT_NE(message.find("asks for 1024 grid points along x for the accuracy, more than the "
+                           "512 LAMMPS' MSM takes"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("atom 4001 lies 99"), std::string::npos) << message;
+  }
+  auto lmp = open_lammps();
+  cloud(lmp, false, 40, "sph/astro/gravity 3.0", "msm/sph/astro/gravity 1e-4");
+  commands(lmp, {"kspace_modify mesh 2048 8 8"});
+  const std::string message = error_of(lmp, "run 0");
+  EXPECT_NE(message.find("kspace_modify mesh 2048 8 8: kspace_style msm/sph/astro/gravity takes "
+                         "at most 512 grid points along an axis"),
+            std::string::npos)
+      << message;
+}
+
+// a box created 2000 long around a ball of radius 5 (boundary s): MSM chose its grid and cutoff
+// for that box (cutoff 1350) and kept the number of points when LAMMPS wrapped the box around
+// the atoms at the run's setup; its direct-sum stencil, 2 cutoff / spacing wide, then asked for
+// a negative number of bytes (1.4 of 81 for a box 120 long: 4.8 GB)
+TEST(GravityKSpaceFarParticle, OversizedBoxIsWrappedBeforeMSMChoosesItsGrid)
+{
+  auto lmp = open_lammps();
+  commands(lmp,
+           {"units lj", "atom_style atomic", "atom_modify map array sort 0 0.0", "boundary s s s",
+            "region box block -1000 1000 -1000 1000 -1000 1000", "create_box 1 box",
+            "region ball sphere 0 0 0 5 units box", "create_atoms 1 random 400 4711 ball",
+            "mass 1 1.0", "sph/astro/state", "variable hrand atom 0.3+0.3*random(0,1,99)",
+            "set group all d_h v_hrand", "pair_style sph/astro/gravity 3.0", "pair_coeff * *",
+            "kspace_style msm/sph/astro/gravity 1e-4", "compute ref all sph/astro/gravity/direct"});
+  ASSERT_EQ(error_of(lmp, "run 0"), "");
+  const double err = force_error(lmp);
+  int dim = 0;
+  const double cutoff = *static_cast<double *>(lmp->force->pair->extract("cut_coul", dim));
+  std::printf("box created 2000 long: relative RMS force error %.3e, MSM cutoff %.4g\n", err,
+              cutoff);
+  EXPECT_LT(err, 3e-4);
+  EXPECT_LT(cutoff, 12.0);
+}
+
+// one particle escaping from a cloud (G tiny: the cloud stays where it is) at 200 length units
+// per time unit: MSM keeps the grid spacing of the run's start, so the points along x double
+// with the box, 8 -> 1024 within 4 steps, where LAMMPS' MSM stopped with "Too many MSM grid
+// levels" (and its levels, freed twice, corrupted the heap when LAMMPS was deleted); moving in
+// y and z as well the grid grew to 64 64 64, 7 s per step. The growth is bounded, at the 512
+// points along an axis of MSM's 10 levels and at 128 times the points of the run's start
+// (kspace_modify mesh/growth): the run stops there, naming the atom, its distance from the
+// centre of mass and the remedies
+TEST(GravityKSpaceFarParticle, EscapingParticleBoundsTheGridGrowth)
+{
+  for (const bool lower_bound : {false, true}) {
+    auto lmp = open_lammps();
+    cloud(lmp, false, 400, "sph/astro/gravity 3.0 G 1e-6", "msm/sph/astro/gravity 1e-4");
+    commands(lmp,
+             {"create_atoms 1 single 0 0 0 units box", "set atom 401 x 5.5 vx 200 d_h 0.5",
+              "fix nve all nve", "timestep 1.0", "neigh_modify every 1 delay 0 check yes"});
+    if (lower_bound) commands(lmp, {"kspace_modify mesh/growth 4"});
+    const std::string message = error_of(lmp, "run 20");
+    // 8 8 8 points at the start (spacing 1.5): more than 512 along x for a box longer than 768
+    // (step 4), 4 times the points for one longer than 48 (step 1)
+    EXPECT_NE(message.find(std::string("kspace_style msm/sph/astro/gravity: on step ") +
+                           (lower_bound ? "1 " : "4 ")),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find(lower_bound
+                               ? "more than 4 times the 512 points of the run's start"
+                               : "more than the 512 points along an axis LAMMPS' MSM takes"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("atom 401 lies"), std::string::npos) << message;
+    // (a bound to raise only below MSM's levels)
+    EXPECT_EQ(message.find("raise the bound (kspace_modify mesh/growth)") != std::string::npos,
+              lower_bound)
+        << message;
+    std::printf("%s\n", message.c_str());
+  }
+  // the points of the start grow in x, y and z: the default bound
+  {
+    auto lmp = open_lammps();
+    cloud(lmp, false, 400, "sph/astro/gravity 3.0 G 1e-6", "msm/sph/astro/gravity 1e-4");
+    commands(lmp,
+             {"create_atoms 1 single 0 0 0 units box",
+              "set atom 401 x 5.5 y 5.5 z 5.5 vx 20 vy 20 vz 20 d_h 0.5", "fix nve all nve",
+              "timestep 1.0", "neigh_modify every 1 delay 0 check yes"});
+    const std::string message = error_of(lmp, "run 20");
+    EXPECT_NE(message.find("more than 128 times the 512 points of the run's start (kspace_modify "
+                           "mesh/growth 128)"),
+              std::string::npos)
+        << message;
+    std::printf("%s\n", message.c_str());
+  }
+  auto lmp = open_lammps();
+  cloud(lmp, false, 40, "sph/astro/gravity 3.0", "msm/sph/astro/gravity 1e-4");
+  for (const char *bad : {"0.5", "-1", "many"}) {
+    const std::string message = error_of(lmp, std::string("kspace_modify mesh/growth ") + bad);
+    EXPECT_NE(message.find("mesh/growth"), std::string::npos) << bad << ": " << message;
+  }
 }
 
 TEST(GravityPair, MomentumIsConserved)
@@ -755,6 +897,47 @@ TEST(GravityPair, RestartContinuesBitForBit)
   std::remove(restart.c_str());
 }
 
+// read_restart of pair_style hybrid/overlay: LAMMPS restores the sub-styles and their settings
+// but keeps no pair_coeff of hybrid styles in restart files, and a run stopped with "All pair
+// coeffs are not set". read_restart warns, naming the sub-styles' pair_coeff; a gravity kspace
+// style stops the run with an error saying so (before LAMMPS' check); with the pair_coeff
+// given again the run goes on
+TEST(GravityRestart, HybridPairCoeffsAreNamedAfterReadRestart)
+{
+  const std::string restart = "test_gravity_hybrid.restart", log = "test_gravity_hybrid.log";
+  {
+    auto lmp = open_lammps();
+    falling_ball(lmp, "1.5", "courant 0.3");
+    commands(lmp, {"run 1", "write_restart " + restart});
+  }
+  {
+    auto lmp = open_lammps();
+    commands(lmp, {"log " + log, "read_restart " + restart, "log none"});
+    std::ifstream in(log);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (const char *style : {"sph/astro", "sph/astro/gravity"})
+      EXPECT_NE(text.find(std::string("pair_style hybrid/overlay: sub-style ") + style +
+                          " restored from the restart file without pair_coeff"),
+                std::string::npos)
+          << text;
+    EXPECT_NE(text.find("pair_coeff * * sph/astro/gravity"), std::string::npos) << text;
+    commands(lmp, {"kspace_style msm/sph/astro/gravity 1e-5", "fix gas all sph/astro"});
+    const std::string message = error_of(lmp, "run 0");
+    EXPECT_NE(message.find("kspace_style msm/sph/astro/gravity: pair_style hybrid/overlay has no "
+                           "pair_coeff for type 1"),
+              std::string::npos)
+        << message;
+  }
+  auto lmp = open_lammps();
+  commands(lmp,
+           {"read_restart " + restart, "pair_coeff * * sph/astro",
+            "pair_coeff * * sph/astro/gravity", "kspace_style msm/sph/astro/gravity 1e-5",
+            "fix gas all sph/astro"});
+  EXPECT_EQ(error_of(lmp, "run 0"), "");
+  std::remove(restart.c_str());
+  std::remove(log.c_str());
+}
+
 // ----------------------------------------------------------------- bad input
 
 TEST(GravityErrors, MissingGInUnitsReal)
@@ -835,6 +1018,26 @@ TEST(GravityErrors, NonGravityKSpace)
     EXPECT_NE(err.find("pair_style sph/astro/gravity: kspace_style"), std::string::npos) << err;
     EXPECT_NE(err.find("is not a gravity solver"), std::string::npos) << err;
   }
+}
+
+// an absurd accuracy: MSM adjusts its cutoff to 485 for a grid spacing of 1.5, and its direct
+// sums asked for a negative number of bytes ("Failed to allocate -67781918720 bytes"); the
+// error names the accuracy, the cutoff and the memory. 1e-10 runs (cutoff 37.6)
+TEST(GravityErrors, MSMAccuracyBeyondMemory)
+{
+  {
+    auto lmp = open_lammps();
+    cloud(lmp, false, 400, "sph/astro/gravity 3.0", "msm/sph/astro/gravity 1e-20");
+    const auto err = error_of(lmp, "run 0");
+    EXPECT_NE(err.find("kspace_style msm/sph/astro/gravity: its cutoff 485.561 spans 324 grid "
+                       "spacings"),
+              std::string::npos)
+        << err;
+    EXPECT_NE(err.find("the accuracy 1e-20 asks for that cutoff"), std::string::npos) << err;
+  }
+  auto lmp = open_lammps();
+  cloud(lmp, false, 400, "sph/astro/gravity 3.0", "msm/sph/astro/gravity 1e-10");
+  EXPECT_EQ(error_of(lmp, "run 0"), "");
 }
 
 TEST(GravityErrors, CutoffShorterThanSoftening)

@@ -24,6 +24,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <set>
 #include <string>
@@ -498,6 +500,68 @@ TEST(Snapshot, Units)
     EXPECT_EQ(snap.text("Header", "LAMMPS units"), "si");
     std::remove("test_snapshot_si_0.hdf5");
   }
+}
+
+// precision float: a value beyond the float range (3.4e38) is written as inf; the snapshot
+// warns, naming the fields, the first atom and its value (it wrote inf silently)
+TEST(Snapshot, FloatOverflowIsWarned)
+{
+  const std::string log = "test_snapshot_overflow.log", name = "test_snapshot_overflow_0.hdf5";
+  for (const char *precision : {"float", "double"}) {
+    auto lmp = open_lammps();
+    scene(lmp,
+          std::string("fix snap all sph/astro/snapshot 5 test_snapshot_overflow_*.hdf5 "
+                      "precision ") +
+              precision);
+    commands(lmp, {"set atom 7 d_u 1e40", "log " + log, "run 0", "log none"});
+    if (rank() != 0) continue;
+    std::ifstream in(log);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const bool is_float = std::string(precision) == "float";
+    EXPECT_EQ(text.find("fix sph/astro/snapshot precision float: step 0, "
+                        "test_snapshot_overflow_0.hdf5: values beyond the float range") !=
+                  std::string::npos,
+              is_float)
+        << text;
+    if (is_float) {
+      EXPECT_NE(text.find("InternalEnergies (1 value, first: atom 7, 1e+40)"), std::string::npos)
+          << text;
+      EXPECT_NE(text.find("Pressures (1 value, first: atom 7"), std::string::npos) << text;
+    }
+    Snapshot snap(name);
+    const auto ids = snap.data("PartType0/ParticleIDs");
+    const auto u = snap.data("PartType0/InternalEnergies");
+    for (size_t k = 0; k < ids.size(); k++)
+      if (std::lround(ids[k]) == 7) EXPECT_EQ(std::isinf(u[k]), is_float) << precision;
+    std::remove(name.c_str());
+  }
+  std::remove(log.c_str());
+}
+
+// two snapshot fixes writing the same files: an error naming both fix IDs and the file name
+TEST(Snapshot, TwoFixesWithOneFileNameAreRefused)
+{
+  for (const char *other : {"test_snapshot_twice_*.hdf5", "./test_snapshot_twice_*.hdf5"}) {
+    auto lmp = open_lammps();
+    scene(lmp, "fix snap all sph/astro/snapshot 5 test_snapshot_twice_*.hdf5");
+    commands(lmp, {std::string("fix again all sph/astro/snapshot 2 ") + other});
+    const std::string message = error_of(lmp, "run 0");
+    EXPECT_NE(message.find("fix sph/astro/snapshot: fixes snap and again both write "),
+              std::string::npos)
+        << message;
+    std::remove("test_snapshot_twice_0.hdf5");
+  }
+  // other names: both written
+  auto lmp = open_lammps();
+  scene(lmp, "fix snap all sph/astro/snapshot 5 test_snapshot_twice_a_*.hdf5");
+  commands(lmp, {"fix again all sph/astro/snapshot 5 test_snapshot_twice_b_*.hdf5"});
+  EXPECT_EQ(error_of(lmp, "run 0"), "");
+  if (rank() == 0) {
+    EXPECT_TRUE(file_exists("test_snapshot_twice_a_0.hdf5"));
+    EXPECT_TRUE(file_exists("test_snapshot_twice_b_0.hdf5"));
+  }
+  std::remove("test_snapshot_twice_a_0.hdf5");
+  std::remove("test_snapshot_twice_b_0.hdf5");
 }
 
 TEST_F(BadInputTest, SnapshotArguments)

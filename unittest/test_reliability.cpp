@@ -16,6 +16,7 @@
 #include "atom.h"
 #include "compute.h"
 #include "modify.h"
+#include "neighbor.h"
 
 #include <cmath>
 #include <cstdio>
@@ -319,4 +320,111 @@ TEST_F(Setting, DtmaxThatOverflowsTheTimeIsNamed)
       << message;
   EXPECT_NE(message.find("dtmax = 1e+308"), std::string::npos) << message;
   EXPECT_LT(lmp->update->ntimestep, 2);
+}
+
+// fix sph/astro/h margin M: the ghost cutoff of a run's start serves h up to M x the largest h.
+// Within a run fix sph/astro/h widens it at most to what half the shortest periodic box length
+// serves (a kernel wider than that meets its particle's own images); at the start a margin
+// beyond the default 1.5 is bounded likewise, with a warning naming the keyword and value.
+// Without the bound margin 5 in this box of side 2 (h 0.9) made 34 429 ghosts for 32
+// particles, margin 20 1.7 million (500 MB), margin 100 hung in the set-up with gigabytes
+TEST_F(Setting, GhostCutoffOfALargeMarginIsBoundedByThePeriodicBox)
+{
+  const std::string log = "test_reliability_margin.log";
+  for (const char *margin : {"5", "100", "1.5"}) {
+    if (std::string(margin) != "5") {    // a fresh instance (the old one first: plugins are global)
+      lmp.reset();
+      SetUp();
+    }
+    sph();
+    commands(lmp,
+             {std::string("fix hvar all sph/astro/h iterate margin ") + margin, "log " + log,
+              "run 1", "log none"});
+    // half the box serves h up to (2 / 2 - skin 0.3) / R 2 = 0.35, below the default's room
+    // 1.5 x 0.9: ghost cutoff R 1.35 + skin = 3.0, as with the default margin
+    ASSERT_NEAR(lmp->neighbor->cutneighmax, 3.0, 1e-12) << "margin " << margin;
+    EXPECT_LT(lmp->atom->nghost, 4000) << "margin " << margin;
+    std::ifstream in(log);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(text.find(std::string("fix sph/astro/h margin ") + margin +
+                        ": the ghost cutoff for h up to") != std::string::npos,
+              std::string(margin) != "1.5")
+        << text;
+  }
+  std::remove(log.c_str());
+}
+
+// dimension 2: pair sph/astro uses the 2d kernel on distances that include z, so an atom off the
+// plane z = 0 (set, a force in z) changed the densities silently (0.87 instead of 1.0 beside an
+// atom set to z = 0.45) and drifted in z; fix sph/astro names the atom, its z and v_z, at the
+// start of the run or after the step where it left the plane
+TEST(TwoDimensions, AtomOffThePlaneIsNamed)
+{
+  for (const std::string bad : {"", "set atom 5 z 0.45", "fix push all addforce 0 0 1.0"}) {
+    auto lmp = open_lammps();
+    commands(lmp,
+             {"units lj", "dimension 2", "atom_style atomic", "atom_modify map array",
+              "lattice sq 1.0", "region box block 0 10 0 10 -0.5 0.5", "create_box 1 box",
+              "create_atoms 1 box", "mass 1 1", "pair_style " + std::string(PAIR), "pair_coeff * *",
+              "fix gas all sph/astro dt fixed", "set group all d_h 1.2", "set group all d_u 1.0",
+              "timestep 0.001"});
+    if (!bad.empty()) commands(lmp, {bad});
+    const std::string message = error_of(lmp, "run 3");
+    if (bad.empty())
+      EXPECT_EQ(message, "");
+    else if (bad.find("set") == 0)
+      EXPECT_NE(message.find("fix sph/astro: dimension 2, but atom 5 has z = 0.45 (v_z = 0) at "
+                             "the start of the run"),
+                std::string::npos)
+          << message;
+    else
+      EXPECT_NE(message.find("after the step (step 1)"), std::string::npos) << message;
+    if (!bad.empty()) EXPECT_NE(message.find("set group all z 0.0"), std::string::npos) << message;
+  }
+}
+
+// a box periodic in none: a support longer than the box diagonal reaches no further atom; margin
+// 1e10 asked for a ghost cutoff of 1.8e10, which on 2 MPI ranks overflowed LAMMPS' count of
+// ghost-exchange swaps, so that the ranks waited on each other for ever. The cap is bounded by
+// the diagonal, at the start and within a run, with the warning naming the margin
+TEST(GhostCutoff, LargeMarginInAnOpenBoxIsBoundedByTheDiagonal)
+{
+  const std::string log = "test_reliability_margin_open.log";
+  auto lmp = open_lammps();
+  commands(lmp,
+           {"units lj", "atom_style atomic", "atom_modify map array", "boundary s s s",
+            "lattice fcc 4.0", "region box block -2 2 -2 2 -2 2", "create_box 1 box",
+            "create_atoms 1 box", "mass 1 0.25", "pair_style " + std::string(PAIR),
+            "pair_coeff * *", "fix gas all sph/astro",
+            "fix hvar all sph/astro/h iterate margin 1e10", "set group all d_h 0.9",
+            "set group all d_u 1.0", "log " + log, "run 2", "log none"});
+  const double *prd = lmp->domain->prd;
+  const double diagonal = std::sqrt(prd[0] * prd[0] + prd[1] * prd[1] + prd[2] * prd[2]);
+  EXPECT_LE(lmp->neighbor->cutneighmax, diagonal + lmp->neighbor->skin + 1e-9);
+  std::ifstream in(log);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("fix sph/astro/h margin 10000000000: the ghost cutoff for h up to"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("beyond what the box diagonal"), std::string::npos) << text;
+  std::remove(log.c_str());
+}
+
+// h that outgrows a cap the box does not let widen (hfact 3 in a periodic box of side 2): the
+// setup says the particles are held there (it promised a widening that never came)
+TEST_F(Setting, HeldAtTheBoxBoundIsSaid)
+{
+  const std::string log = "test_reliability_box_cap.log";
+  sph();
+  commands(lmp,
+           {"fix hvar all sph/astro/h iterate hfact 3.0", "set group all d_h 0.5", "log " + log,
+            "run 1", "log none"});
+  std::ifstream in(log);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("32 particles need h beyond the cap 0.75 at the setup of step 0; they are "
+                      "held there: the cap is not widened past what half the periodic box length "
+                      "serves (h up to 0.35)"),
+            std::string::npos)
+      << text;
+  std::remove(log.c_str());
 }

@@ -377,6 +377,7 @@ void FixSPHAstro::setup(int /*vflag*/)
   user_dt_ = update->dt;
   sentinel_->start_run();
   sentinel_->check_velocities(groupbit, "at the start of the run");
+  sentinel_->check_plane("at the start of the run");
   sentinel_->check_speed_outlier(pair_, igroup);
   if (tend_ > 0.0 && current_time() >= tend_ * (1.0 - 1e-12)) {
     if (comm->me == 0)
@@ -574,6 +575,7 @@ void FixSPHAstro::final_integrate()
 void FixSPHAstro::end_of_step()
 {
   sentinel_->check_velocities(groupbit, "after the step");
+  sentinel_->check_plane("after the step");
   // (individual steps: the particles that ended their step begin the next one, also at tend,
   // so that the state after the run is that of the time line's current point)
   if (steps_) {

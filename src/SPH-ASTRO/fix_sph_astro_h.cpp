@@ -17,12 +17,13 @@
 //
 // Neighbour search (pair sph/astro, sph_astro_neighbour_lists.h): smoothing lengths are capped
 // at h_cap = (ghost cutoff - skin) / kernel radius. A run starts with the ghost cutoff set for
-// h_cap = margin x the largest h (at most hmax). At the end of a step in which LIST_REBUILD x
-// the largest h exceeds h_cap, the fix widens LAMMPS' ghost cutoff (as comm_modify cutoff
-// would) to kernel radius x h_new + skin at the next step, which it makes a reneighbouring
-// step: h_new = max(margin, 1.2) x the largest h, at most hmax and at most what half the
-// shortest periodic box side allows. The user's comm_modify cutoff comes back at the end of
-// the run. When an
+// h_cap = margin x the largest h (at most hmax; a margin above the default at most what the box
+// allows, SPHAstro::box_h_cap). At the end of a step in which LIST_REBUILD x the largest h
+// exceeds h_cap, the fix widens LAMMPS' ghost cutoff (as comm_modify cutoff would) to kernel
+// radius x h_new + skin at the next step, which it makes a reneighbouring step: h_new =
+// max(margin, 1.2) x the largest h, at most hmax and at most what half the shortest periodic
+// box side, or the diagonal of a box periodic in none, allows. The user's comm_modify cutoff
+// comes back at the end of the run. When an
 // h comes within 1/LIST_REBUILD of the largest h its neighbour lists serve, the fix likewise
 // has LAMMPS reneighbour at the next step, so that the lists are made anew before any h
 // outgrows them (pair sph/astro would otherwise make them again inside the step).
@@ -53,6 +54,7 @@
 #include "sph_astro_neighbour_lists.h"
 #include "sph_astro_options.h"
 #include "sph_astro_passes.h"
+#include "sph_astro_scheme.h"
 #include "sph_astro_state.h"
 #include "update.h"
 #include "utils.h"
@@ -73,7 +75,7 @@ FixSPHAstroH::FixSPHAstroH(LAMMPS *lmp, int narg, char **arg) :
   hfact_ = 1.2;
   tolerance_ = 1e-4;
   max_iterations_ = 30;
-  margin_ = 1.5;
+  margin_ = SPHAstro::DEFAULT_MARGIN;
   h_max_ = INFINITY;
   user_cutghost_ = 0.0;
   pending_cutoff_ = 0.0;
@@ -222,12 +224,24 @@ void FixSPHAstroH::setup(int /*vflag*/)
   // particles held at the cap by the setup's iteration keep that h for one step
   int capped_local = pair_->h_statistics().capped, capped;
   MPI_Allreduce(&capped_local, &capped, 1, MPI_INT, MPI_SUM, world);
-  if (capped > 0 && pair_->h_cap() < h_max_ && comm->me == 0)
-    error->warning(FLERR,
-                   "fix sph/astro/h: {} particles need h beyond the cap {:.6g} at the setup of "
-                   "step {}; they keep the cap for one step, until the ghost cutoff is widened "
-                   "(a larger margin, now {}, avoids this)",
-                   capped, pair_->h_cap(), update->ntimestep, margin_);
+  int axis = -1;
+  const double box_cap =
+      SPHAstro::box_h_cap(lmp, pair_->kernel_radius(), neighbor->skin, axis) * (1.0 - 1e-12);
+  if (capped > 0 && pair_->h_cap() < h_max_ && comm->me == 0) {
+    if (pair_->h_cap() < box_cap)
+      error->warning(FLERR,
+                     "fix sph/astro/h: {} particles need h beyond the cap {:.6g} at the setup "
+                     "of step {}; they keep the cap for one step, until the ghost cutoff is "
+                     "widened (a larger margin, now {}, avoids this)",
+                     capped, pair_->h_cap(), update->ntimestep, margin_);
+    else
+      error->warning(FLERR,
+                     "fix sph/astro/h: {} particles need h beyond the cap {:.6g} at the setup "
+                     "of step {}; they are held there: the cap is not widened past what {} "
+                     "serves (h up to {:.6g})",
+                     capped, pair_->h_cap(), update->ntimestep,
+                     axis >= 0 ? "half the periodic box length" : "the box diagonal", box_cap);
+  }
 }
 
 void FixSPHAstroH::end_of_step()
@@ -255,11 +269,12 @@ void FixSPHAstroH::check_limits()
   }
   if (grow * hmax > cap && cap < h_max_) {
     // the new cap: room to grow, at most hmax and at most what half the shortest periodic box
-    // side serves (a kernel wider than that sees a particle's own images)
+    // side (a kernel wider than that sees a particle's own images) or the diagonal of a box
+    // periodic in none serves (SPHAstro::box_h_cap)
     const double R = pair_->kernel_radius(), skin = neighbor->skin;
-    double new_cap = MIN(MAX(margin_, WIDEN) * hmax, h_max_);
-    for (int d = 0; d < domain->dimension; d++)
-      if (domain->periodicity[d]) new_cap = MIN(new_cap, (0.5 * domain->prd[d] - skin) / R);
+    int axis = -1;
+    const double new_cap =
+        MIN(MIN(MAX(margin_, WIDEN) * hmax, h_max_), SPHAstro::box_h_cap(lmp, R, skin, axis));
     if (new_cap > grow * cap) {
       pending_cutoff_ = R * new_cap + skin;
       next_reneighbor = update->ntimestep + 1;

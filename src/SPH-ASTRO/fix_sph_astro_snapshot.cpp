@@ -31,14 +31,17 @@
 #include "group.h"
 #include "lammps.h"
 #include "memory.h"
+#include "modify.h"
 #include "update.h"
 #include "utils.h"
 
 #include <hdf5.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <vector>
 
 using namespace LAMMPS_NS;
@@ -223,6 +226,18 @@ void FixSPHAstroSnapshot::init()
   u_ = state.u;
   pair_ = dynamic_cast<PairSPHAstro *>(force->pair_match("^sph/astro$", 0, 0));
   if (!pair_) error->all(FLERR, "fix sph/astro/snapshot requires pair_style sph/astro");
+  // two fixes with one file name would overwrite each other's snapshots
+  const auto mine = std::filesystem::path(pattern_).lexically_normal();
+  for (Fix *fix : modify->get_fix_by_style("^sph/astro/snapshot$")) {
+    auto *other = dynamic_cast<FixSPHAstroSnapshot *>(fix);
+    if (other && other != this &&
+        std::filesystem::path(other->pattern()).lexically_normal() == mine)
+      error->all(FLERR,
+                 "fix sph/astro/snapshot: fixes {} and {} both write {} (the one would overwrite "
+                 "the other's snapshots); give them different file names",
+                 id, other->id,
+                 pattern_ == other->pattern() ? pattern_ : pattern_ + " and " + other->pattern());
+  }
   if (!unit_given_) {
     // U_L, U_M, U_t of LAMMPS' unit styles with ftm2v = mvv2e = 1 (those fix sph/astro runs)
     const std::string style = update->unit_style;
@@ -463,7 +478,14 @@ void FixSPHAstroSnapshot::write()
   check(H5Lcreate_hard(gas, "InternalEnergies", gas, "InternalEnergy", H5P_DEFAULT, H5P_DEFAULT),
         error, "link InternalEnergy");
 
-  // rows of rank 0, then of every other rank in turn
+  // rows of rank 0, then of every other rank in turn; precision float: the values beyond the
+  // float range (written as inf) per field, with the first atom and value
+  struct Overflow {
+    bigint count = 0;
+    tagint atom = 0;
+    double value = 0.0;
+  };
+  std::vector<Overflow> overflow(fields.size());
   const double support = pair_->options().kernel_radius();
   hsize_t offset = 0;
   for (int proc = 0; proc < comm->nprocs; proc++) {
@@ -490,6 +512,15 @@ void FixSPHAstroSnapshot::write()
         mem_dims[1] = 1;
         mem_start[1] = 0;
       }
+      if (f.type == H5T_NATIVE_FLOAT)
+        for (int i = 0; i < rows; i++)
+          for (int w = 0; w < f.width; w++) {
+            const double value = src[static_cast<size_t>(i) * mem_dims[1] + mem_start[1] + w];
+            if (std::isfinite(value) && std::fabs(value) > FLT_MAX && overflow[k].count++ == 0) {
+              overflow[k].atom = static_cast<tagint>(buf[static_cast<size_t>(i) * NCOL + ID]);
+              overflow[k].value = value;
+            }
+          }
       const hsize_t count[2] = {static_cast<hsize_t>(rows), static_cast<hsize_t>(f.width)};
       const hid_t mem = H5Screate_simple(2, mem_dims, nullptr);
       H5Sselect_hyperslab(mem, H5S_SELECT_SET, mem_start, nullptr, count, nullptr);
@@ -509,6 +540,19 @@ void FixSPHAstroSnapshot::write()
   H5Gclose(gas);
   if (H5Fclose(file) < 0) error->one(FLERR, "fix sph/astro/snapshot: cannot close file {}", name);
   memory->destroy(buf);
+  std::string beyond;
+  for (size_t k = 0; k < fields.size(); k++)
+    if (overflow[k].count > 0)
+      beyond += fmt::format("{}{} ({} value{}, first: atom {}, {:.6g})", beyond.empty() ? "" : ", ",
+                            fields[k].name, overflow[k].count, overflow[k].count > 1 ? "s" : "",
+                            overflow[k].atom, overflow[k].value);
+  if (!beyond.empty()) {
+    error->warning(FLERR,
+                   "fix sph/astro/snapshot precision float: step {}, {}: values beyond the float "
+                   "range ({:.6g}) written as inf: {}; use precision double",
+                   update->ntimestep, name, FLT_MAX, beyond);
+    utils::flush_buffers(lmp);
+  }
 }
 
 // global restart data: N and the step of the last snapshot

@@ -36,6 +36,8 @@ class FixSPHAstroSnapshot : public Fix {
 
   // the file name of the snapshot of a step
   std::string filename(bigint step) const;
+  // the file name pattern as given ('*' for the step)
+  const std::string &pattern() const { return pattern_; }
 
  private:
   std::string pattern_;    // file name with '*' for the step

@@ -35,6 +35,7 @@ class MSMSPHAstroGravity :
   void init() override;
   void setup() override;
   void compute(int, int) override;
+  int modify_param(int, char **) override;
   // fix sph/astro longrange sync: compute where every particle ends its step (null: always)
   void set_long_range_schedule(SPHAstro::LongRangeSchedule *schedule) override
   {
@@ -49,9 +50,13 @@ class MSMSPHAstroGravity :
  protected:
   double G_;
   SPHAstro::LongRangeSchedule *schedule_ = nullptr;
-  double spacing_[3] = {0.0, 0.0, 0.0};    // finest grid spacing of the run start (0: none)
-  bigint last_step_ = -1;                  // the step of the last evaluation (-1: none)
+  double spacing_[3] = {0.0, 0.0, 0.0};    // finest grid spacing chosen at init (0: none)
+  double points_init_ = 0.0;               // points of the finest grid chosen at init
+  double growth_ = 128.0;    // kspace_modify mesh/growth: bound on points / points_init_
+  bigint last_step_ = -1;    // the step of the last evaluation (-1: none)
 
+  void check_levels_at_init();
+  void check_direct_stencil();
   void refine_grid_to_box();
   void set_grid_local_corners();
 };

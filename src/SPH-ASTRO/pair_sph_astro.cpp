@@ -189,11 +189,37 @@ void PairSPHAstro::init_style()
     error->all(FLERR, "pair_style sph/astro: no particle has h > 0 (set group all d_h VALUE)");
   // (an h above fix sph/astro/h hmax at the start keeps its value: the cap is not below it)
   h_cap_start_ = h_cap_ = MAX(hmax, MIN(scheme_->margin * hmax, scheme_->h_max));
+  // A margin beyond the default reaches at most what half the shortest periodic box length,
+  // or the diagonal of a box periodic in none, serves (box_h_cap), the bound of fix
+  // sph/astro/h's widening within a run; the default's room, DEFAULT_MARGIN x the largest h,
+  // stays for boxes too small for that. Margin 100 in a box of side 2 (h 0.9) asked for a
+  // ghost cutoff of 180, 2e8 ghost images of 32 particles; margin 20, 1.7 million (500 MB)
+  const double R = o.kernel_radius(), skin = neighbor->skin;
+  int axis = -1;
+  const double h_cap_box = box_h_cap(lmp, R, skin, axis);
+  const double h_cap_bound = MAX(h_cap_box, DEFAULT_MARGIN * hmax);
+  const double h_cap_wanted = h_cap_start_;
+  h_cap_start_ = h_cap_ = MAX(hmax, MIN(h_cap_wanted, h_cap_bound));
+  if (h_cap_start_ < h_cap_wanted && comm->me == 0) {
+    const std::string box = axis >= 0
+        ? fmt::format("half the periodic box length {:.6g} in {}", domain->prd[axis], "xyz"[axis])
+        : fmt::format("the box diagonal {:.6g}", R * h_cap_box);
+    error->warning(FLERR,
+                   "fix sph/astro/h margin {}: the ghost cutoff for h up to {} x the largest h "
+                   "{:.6g} would be {:.6g}, beyond what {} needs; the run starts with h up to "
+                   "{:.6g} (ghost cutoff {:.6g}): a margin beyond {} serves at most that, as "
+                   "within a run",
+                   scheme_->margin, scheme_->margin, hmax, R * h_cap_wanted + skin, box,
+                   h_cap_start_, R * h_cap_start_ + skin, DEFAULT_MARGIN);
+    utils::flush_buffers(lmp);
+  }
   // a run that continues one (restart file or the run before) keeps its h cap and ghost
   // cutoff, so that it makes the same lists and h iterations; not when h outgrew the cap, the
-  // cap exceeds hmax, or it is more than CARRIED_CAP_MAX times what the run would take
+  // cap exceeds hmax or the periodic box's bound, or it is more than CARRIED_CAP_MAX times what
+  // the run would take
   carried_cap_used_ = scheme_->carried_cap >= hmax && scheme_->carried_cap <= scheme_->h_max &&
-      scheme_->carried_cap_start <= CARRIED_CAP_MAX * h_cap_start_;
+      scheme_->carried_cap_start <= CARRIED_CAP_MAX * h_cap_start_ &&
+      scheme_->carried_cap_start <= MAX(hmax, h_cap_bound);
   if (carried_cap_used_) h_cap_start_ = h_cap_ = scheme_->carried_cap_start;
 
   const double support = o.kernel_radius() * hmax;
@@ -517,6 +543,7 @@ void PairSPHAstro::read_restart_settings(FILE *fp)
   restart_variable_h_ = opt_->read_restart(lmp, fp);
   entropy_gamma_ = opt_->eos.gamma;    // of the run that wrote the file (thermal entropy: A)
   kernel_radius_ = opt_->kernel_radius();
+  warn_hybrid_restart(lmp, this, "sph/astro");
 }
 
 const SearchStatistics &PairSPHAstro::search_statistics() const

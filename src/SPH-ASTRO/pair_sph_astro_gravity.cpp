@@ -815,4 +815,5 @@ void PairSPHAstroGravity::read_restart_settings(FILE *fp)
   G_given_ = ints[1] != 0;
   kernel_given_ = ints[2] != 0;
   zeta_on_ = ints[3] != 0;
+  warn_hybrid_restart(lmp, this, "sph/astro/gravity");
 }

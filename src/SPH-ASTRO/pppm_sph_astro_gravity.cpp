@@ -19,6 +19,7 @@
 #include "pppm_sph_astro_gravity.h"
 
 #include "sph_astro_gravity_kspace.h"
+#include "sph_astro_pair_coeff.h"
 
 #include "domain.h"
 #include "error.h"
@@ -51,6 +52,7 @@ void PPPMSPHAstroGravity::init()
                "open boundaries use kspace_style msm/sph/astro/gravity)",
                STYLE, boundary_string(lmp));
   if (slabflag) error->all(FLERR, "{}: kspace_modify slab is not supported for gravity", STYLE);
+  check_hybrid_coeffs(lmp, STYLE);
   G_ = gravity_constant(lmp, STYLE);
   masses_to_charges(lmp);
   {

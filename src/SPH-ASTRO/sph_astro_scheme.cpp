@@ -7,11 +7,14 @@
 
 #include "sph_astro_scheme.h"
 
+#include "domain.h"
 #include "error.h"
 #include "fix.h"
 #include "lammps.h"
 #include "modify.h"
 #include "sph_astro_options.h"
+
+#include <cmath>
 
 using namespace LAMMPS_NS;
 
@@ -56,6 +59,21 @@ Scheme read_scheme(LAMMPS *lmp, const PairOptions &options)
       (scheme.has_switch && fix_setting(switches.front(), "needs_curl") != 0.0);
   options.check_scheme(lmp, scheme.gradh(), scheme.entropy, scheme.has_switch);
   return scheme;
+}
+
+double box_h_cap(LAMMPS *lmp, double kernel_radius, double skin, int &axis)
+{
+  const Domain *domain = lmp->domain;
+  double cap = INFINITY, diagonal2 = 0.0;
+  axis = -1;
+  for (int d = 0; d < domain->dimension; d++) {
+    diagonal2 += domain->prd[d] * domain->prd[d];
+    if (domain->periodicity[d] && (0.5 * domain->prd[d] - skin) / kernel_radius < cap) {
+      cap = (0.5 * domain->prd[d] - skin) / kernel_radius;
+      axis = d;
+    }
+  }
+  return axis >= 0 ? cap : std::sqrt(diagonal2) / kernel_radius;
 }
 
 }    // namespace SPHAstro

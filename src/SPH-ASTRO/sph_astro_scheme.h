@@ -22,6 +22,9 @@ namespace SPHAstro {
 
 struct PairOptions;
 
+// fix sph/astro/h margin: its default
+constexpr double DEFAULT_MARGIN = 1.5;
+
 struct Scheme {
   // smoothing length: fixed, evolved by dh/dt (both with h_ij = (h_i + h_j)/2 in every pair
   // term; fix sph/astro/h dhdt), or iterated with rho (W(h_i) and W(h_j), grad-h factor
@@ -43,6 +46,13 @@ struct Scheme {
 // the scheme of this run from the package's fixes (fix sph/astro must exist: an error says
 // so), checked against the options (PairOptions::check_scheme)
 Scheme read_scheme(LAMMPS_NS::LAMMPS *lmp, const PairOptions &options);
+
+// the largest h the ghost cutoff serves in this box, the bound of the h cap: with a periodic
+// dimension what half its shortest length L serves, (L/2 - skin)/R (a wider kernel meets its
+// particle's own images); periodic in none, what the box diagonal D serves, D/R (that support
+// reaches every atom in the box; one of 1e10 made LAMMPS' ghost exchange overflow its count of
+// swaps). axis: the periodic dimension that bounds it, -1 for the diagonal
+double box_h_cap(LAMMPS_NS::LAMMPS *lmp, double kernel_radius, double skin, int &axis);
 
 }    // namespace SPHAstro
 

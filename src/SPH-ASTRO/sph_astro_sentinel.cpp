@@ -82,6 +82,20 @@ void StabilitySentinel::check_velocities(int groupbit, const char *when)
                  atom->tag[i], v[i][0], v[i][1], v[i][2], when, update->ntimestep);
 }
 
+void StabilitySentinel::check_plane(const char *when)
+{
+  if (domain->dimension != 2) return;
+  double **x = atom->x, **v = atom->v;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (x[i][2] != 0.0 || v[i][2] != 0.0)
+      error->one(FLERR,
+                 "fix sph/astro: dimension 2, but atom {} has z = {} (v_z = {}) {} (step {}); "
+                 "2d SPH takes the 2d kernel of distances that include z, so every atom must "
+                 "lie at z = 0 and move in that plane (set group all z 0.0; no force or "
+                 "velocity in z)",
+                 atom->tag[i], x[i][2], v[i][2], when, update->ntimestep);
+}
+
 void StabilitySentinel::check_speed_outlier(PairSPHAstro *pair, int igroup)
 {
   const int groupbit = group->bitmask[igroup];

@@ -39,6 +39,9 @@ class StabilitySentinel : protected LAMMPS_NS::Pointers {
   // the owned atoms of groupbit: the first whose velocity (or its square) is not finite stops
   // the run
   void check_velocities(int groupbit, const char *when);
+  // dimension 2: the first owned atom off the plane z = 0 or moving out of it stops the run (pair
+  // sph/astro takes the 2d kernel of distances that include z)
+  void check_plane(const char *when);
   // after the setup forces: a particle whose speed |v| exceeds 1/collapse times the group's
   // typical signal speed |v| + c_s (geometric mean) sets the timestep alone; reported with its ID
   void check_speed_outlier(LAMMPS_NS::PairSPHAstro *pair, int igroup);

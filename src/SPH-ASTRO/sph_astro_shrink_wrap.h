@@ -23,6 +23,7 @@
 #include "domain.h"
 #include "lammps.h"
 
+#include <algorithm>
 #include <mpi.h>
 
 namespace SPHAstro {
@@ -60,6 +61,75 @@ inline int restore_shrink_wrap_padding(LAMMPS_NS::Domain *domain, const double *
   for (int d = 0; d < 3; d++) small[d] = list[d];
   return 3;
 }
+
+// The box Domain::reset_box wraps around the atoms at a run's setup: on the shrink-wrapped sides
+// of an orthogonal box the atoms' extent plus the padding, boundary m at least its minimum; the
+// other sides as they are (collective). False if no side is shrink-wrapped or there are no atoms.
+inline bool shrink_wrapped_box(LAMMPS_NS::LAMMPS *lmp, double lo[3], double hi[3])
+{
+  LAMMPS_NS::Domain *domain = lmp->domain;
+  for (int d = 0; d < 3; d++) {
+    lo[d] = domain->boxlo[d];
+    hi[d] = domain->boxhi[d];
+  }
+  if (domain->nonperiodic != 2 || domain->triclinic || lmp->atom->natoms == 0) return false;
+  double extent[6], all[6];    // -min x, y, z and max x, y, z (one MPI_MAX)
+  for (double &e : extent) e = -1.0e300;
+  double **x = lmp->atom->x;
+  for (int i = 0; i < lmp->atom->nlocal; i++)
+    for (int d = 0; d < 3; d++) {
+      extent[d] = std::max(extent[d], -x[i][d]);
+      extent[3 + d] = std::max(extent[3 + d], x[i][d]);
+    }
+  MPI_Allreduce(extent, all, 6, MPI_DOUBLE, MPI_MAX, lmp->world);
+  const double *small = DomainPadding::of(domain);
+  const double minlo[3] = {domain->minxlo, domain->minylo, domain->minzlo};
+  const double minhi[3] = {domain->minxhi, domain->minyhi, domain->minzhi};
+  for (int d = 0; d < 3; d++) {
+    if (domain->periodicity[d]) continue;
+    const int *side = domain->boundary[d];
+    if (side[0] == 2) lo[d] = -all[d] - small[d];
+    if (side[0] == 3) lo[d] = std::min(-all[d] - small[d], minlo[d]);
+    if (side[1] == 2) hi[d] = all[3 + d] + small[d];
+    if (side[1] == 3) hi[d] = std::max(all[3 + d] + small[d], minhi[d]);
+  }
+  return true;
+}
+
+// the box set to [lo, hi] while this lives (if active), the box before restored after
+class BoxScope {
+ public:
+  BoxScope(LAMMPS_NS::Domain *domain, const double lo[3], const double hi[3], bool active) :
+      domain_(domain), active_(active)
+  {
+    if (!active_) return;
+    for (int d = 0; d < 3; d++) {
+      lo_[d] = domain->boxlo[d];
+      hi_[d] = domain->boxhi[d];
+      domain->boxlo[d] = lo[d];
+      domain->boxhi[d] = hi[d];
+    }
+    domain->set_global_box();
+    domain->set_local_box();
+  }
+  ~BoxScope()
+  {
+    if (!active_) return;
+    for (int d = 0; d < 3; d++) {
+      domain_->boxlo[d] = lo_[d];
+      domain_->boxhi[d] = hi_[d];
+    }
+    domain_->set_global_box();
+    domain_->set_local_box();
+  }
+  BoxScope(const BoxScope &) = delete;
+  BoxScope &operator=(const BoxScope &) = delete;
+
+ private:
+  LAMMPS_NS::Domain *domain_;
+  bool active_;
+  double lo_[3] = {0.0, 0.0, 0.0}, hi_[3] = {0.0, 0.0, 0.0};
+};
 
 }    // namespace SPHAstro
 
