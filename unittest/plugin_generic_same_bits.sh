@@ -9,8 +9,10 @@
 # Usage: plugin_generic_same_bits.sh WORKDIR LAMMPS_DIR LAMMPS_SOURCE_DIR BUILD_DIR
 #
 # In WORKDIR: the project configured with SPH_ASTRO_NATIVE=OFF and its plugin built; then
-# Sedov (n 10, individual steps, 2 ranks) and the Evrard collapse (n 6, MSM gravity, to t 0.3)
-# run with each plugin, and their final dumps must be the same bytes. Skipped (77) when the
+# Sedov (n 10, individual steps, 2 ranks), the Evrard collapse (n 6, MSM gravity, to t 0.3) and
+# with the tree (n 8, individual steps, 2 ranks, to t 0.3: its sums run in a fixed number of
+# lanes, whatever the vector width) run with each plugin, and their final dumps must be the same
+# bytes. Skipped (77) when the
 # plugin of BUILD_DIR is not compiled with -march=native (nothing to compare).
 set -euo pipefail
 [ $# = 4 ] || { sed -n '9p' "$0" >&2; exit 2; }
@@ -43,8 +45,11 @@ for kind in native generic; do
   LAMMPS_PLUGIN_PATH=$plugins lmp -in "$root/examples/evrard/in.evrard" -var n 6 -var tend 0.3 \
     -var gravity msm -var out "evrard.$kind" -log "log.evrard.$kind" >/dev/null ||
     fail "Evrard with the $kind plugin"
+  LAMMPS_PLUGIN_PATH=$plugins mpirun -np 2 lmp -in "$root/examples/evrard/in.evrard" -var n 8 \
+    -var tend 0.3 -var steps individual -var gravity tree -var out "evrard_tree.$kind" \
+    -log "log.evrard_tree.$kind" >/dev/null || fail "Evrard (tree) with the $kind plugin"
 done
-for scene in sedov evrard; do
+for scene in sedov evrard evrard_tree; do
   [ -s "$scene.native" ] || fail "no dump $scene.native"
   cmp "$scene.native" "$scene.generic" || fail "the $scene dumps of the two plugins differ"
   echo "ok: the $scene dumps are the same bytes ($(wc -l <"$scene.native") lines)"
