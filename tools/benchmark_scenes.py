@@ -14,9 +14,14 @@ Rows (``--rows``, default all): ``box1e4``, ``box1e5``, ``box1e6`` (examples/ben
 uniform periodic box, fixed h and dt, 40/20/5 steps), ``box1e5i`` (the same box as the scenes
 run: the h iteration with grad-h terms, skin 0.5 h), ``sedov16``, ``sedov22``, ``sedov35``
 (examples/sedov to t = 0.1), ``noh24`` (examples/noh to t = 0.6), ``evrard`` (examples/evrard,
-n 16, MSM gravity, to t = 0.8), the same scenes with individual timesteps (``sedov16i``,
+n 16, MSM gravity, to t = 0.8), ``evrard16d``, ``evrard16t``, ``evrard24d``, ``evrard24t``
+(Evrard to t = 0.8 with direct summation or the tree), ``evrard24n`` and ``evrard24tm`` (n 24
+to t = 0.1 without gravity and with the tree: the memory gravity adds), ``evrard40t3`` (n 40,
+135 000 particles, the tree, to t = 3; only when asked for), the same scenes with individual timesteps (``sedov16i``,
 ``sedov22i``, ``sedov35i``, ``noh24i``, ``evrardi``: ``-var steps individual`` with the inputs'
-default pair kicks; their updates are the particle-updates fix sph/astro counts); the same with
+default pair kicks; their updates are the particle-updates fix sph/astro counts; for the
+Evrard gravity rows ``evrard16di``, ``evrard16ti``, ``evrard24ti``, ``evrard24ni``,
+``evrard24tmi``, ``evrard40t3i``); the same with
 particle kicks, ``-var kicks particle``: ``sedov16ik``, ``sedov22ik``, ``sedov35ik``,
 ``noh24ik``, ``evrardik``; ``sedov16i1``, ``sedov22i1``, ``sedov35i1`` with ``-var limiter 1``
 (the default is 2 levels with pair kicks); ``sedov16p``, ``sedov22p``,
@@ -45,7 +50,9 @@ Each SPH-ASTRO row runs ``mpirun -np NP /usr/bin/time -f %M lmp ...`` and prints
   iteration, and neighbours inside the kernel support (the pair's end-of-run line);
   ghosts: ghost atoms per particle;
 * RSS MB: peak resident memory summed over the ranks; B/part: (RSS - the ranks' RSS for a
-  32-particle box on as many ranks, the fixed cost of the lmp processes) / N.
+  32-particle box on as many ranks, the fixed cost of the lmp processes) / N;
+* grav/hyd: LAMMPS' Kspace seconds over its Pair seconds (the tree's gravity against the hydro
+  for the same particle-updates); dE: the Evrard runs' relative energy error at the end.
 
 SWIFT rows give wall, steps (its step count), updates (particle updates, summed over steps),
 particle updates per second per thread, and its peak RSS. The table goes to stdout and to
@@ -79,7 +86,28 @@ SCENES = {
     "noh24": ("noh/in.noh", {"n": 24, "thermoevery": 100}),
     "evrard": ("evrard/in.evrard", {"n": 16, "gravity": "msm", "tend": 0.8,
                                     "thermoevery": 100}),
+    # self-gravity solvers on the Evrard collapse to t = 0.8: direct summation (d), the tree
+    # (t), the hydro without gravity (n, for the cost and memory gravity adds); + "i":
+    # individual steps
+    "evrard16d": ("evrard/in.evrard", {"n": 16, "gravity": "direct", "tend": 0.8,
+                                       "thermoevery": 50}),
+    "evrard16t": ("evrard/in.evrard", {"n": 16, "gravity": "tree", "tend": 0.8,
+                                       "thermoevery": 50}),
+    "evrard24d": ("evrard/in.evrard", {"n": 24, "gravity": "direct", "tend": 0.8,
+                                       "thermoevery": 50}),
+    "evrard24t": ("evrard/in.evrard", {"n": 24, "gravity": "tree", "tend": 0.8,
+                                       "thermoevery": 50}),
+    "evrard24n": ("evrard/in.evrard", {"n": 24, "gravity": "none", "tend": 0.1,
+                                       "thermoevery": 50}),
+    "evrard24tm": ("evrard/in.evrard", {"n": 24, "gravity": "tree", "tend": 0.1,
+                                        "thermoevery": 50}),
+    # the Evrard collapse with the tree at 135 000 particles to t = 3 (about 20 minutes)
+    "evrard40t3": ("evrard/in.evrard", {"n": 40, "gravity": "tree", "tend": 3.0,
+                                        "thermoevery": 100}),
 }
+for _name in ("evrard16d", "evrard16t", "evrard24t", "evrard24n", "evrard24tm", "evrard40t3"):
+    _script, _vars = SCENES[_name]
+    SCENES[_name + "i"] = (_script, dict(_vars, steps="individual"))
 # the scenes with individual timesteps (fix sph/astro steps individual, its default pair kicks):
 # row name + "i"; with particle kicks (kicks particle): + "ik"
 for _name in ("sedov16", "sedov22", "sedov35", "noh24", "evrard"):
@@ -112,7 +140,10 @@ SWIFT_ROWS = {"swift35": 35, "swift56": 56}
 ORDER = ["box1e4", "box1e5", "box1e6", "box1e5i"] + [
     s + v for s in ("sedov16", "sedov22", "sedov35")
     for v in ("", "p", "i", "ik", "ip", "i1", "c", "ic", "s", "is")] + [
-    "noh24", "noh24i", "noh24ik", "evrard", "evrardi", "evrardik", "swift35", "swift56"]
+    "noh24", "noh24i", "noh24ik", "evrard", "evrardi", "evrardik", "evrard16d", "evrard16t",
+    "evrard16ti", "evrard16di", "evrard24d", "evrard24t", "evrard24ti", "evrard24ni",
+    "evrard24tmi", "swift35", "swift56"]
+# (evrard40t3i, about 20 minutes on 2 ranks, only when asked for)
 
 _LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", re.M)
 # (with individual steps the line gives entries per row made, of reach rows: no half list)
@@ -122,6 +153,8 @@ _SEARCH = re.compile(r"pair sph/astro neighbour search: .*?per (?:particle|row m
                      r"ghost atoms", re.S)
 _RSS = re.compile(r"RSS_KB (\d+)")
 _UPDATES = re.compile(r"fix sph/astro steps individual: (\S+) particle-updates")
+_SECTION = re.compile(r"^(Pair|Kspace)\s+\|\s+\S+\s+\|\s+(\S+)", re.M)
+_ENERGY = re.compile(r"relative energy error (\S+)")
 
 
 def run_lammps(name, np_ranks, outdir, env, individual_vars=()):
@@ -160,6 +193,12 @@ def run_lammps(name, np_ranks, outdir, env, individual_vars=()):
     individual = _UPDATES.findall(log)    # individual steps: the updates the fix counted
     if individual:
         row["updates"] = sum(float(v) for v in individual)
+    # the seconds of LAMMPS' Pair and Kspace sections (the hydro and the gravity kspace)
+    sections = dict(_SECTION.findall(log))
+    row["pair_s"] = float(sections.get("Pair", "nan"))
+    row["kspace_s"] = float(sections.get("Kspace", "nan"))
+    energy = _ENERGY.findall(log)
+    row["energy"] = float(energy[-1]) if energy else float("nan")
     found = _SEARCH.findall(log)
     row["half"], row["rows"], row["kern"], row["ghosts"] = [float("nan")] * 4
     if found:
@@ -198,7 +237,8 @@ def run_swift(name, n, outdir, swift_bin, swift_dir):
     rss = [int(v) for v in _RSS.findall(proc.stderr)]
     return {"name": name, "ranks": 2, "wall": wall, "loop": wall, "steps": steps, "N": n ** 3,
             "updates": updates, "rss_mb": sum(rss) / 1024.0, "half": float("nan"),
-            "rows": float("nan"), "kern": float("nan"), "ghosts": float("nan"), "swift": True}
+            "rows": float("nan"), "kern": float("nan"), "ghosts": float("nan"), "swift": True,
+            "pair_s": float("nan"), "kspace_s": float("nan"), "energy": float("nan")}
 
 
 def table(rows, fixed_mb):
@@ -207,7 +247,8 @@ def table(rows, fixed_mb):
     box_cost = box["loop"] * box["ranks"] / box["updates"] * 1e6 if box else None
     head = (f"{'row':<9} {'N':>9} {'ranks':>5} {'wall s':>8} {'loop s':>8} {'steps':>6} "
             f"{'upd M':>7} {'Mps/s/c':>8} {'us.c/ps':>8} {'x box':>6} {'half':>6} {'rows':>6} "
-            f"{'kern':>6} {'ghosts':>6} {'RSS MB':>8} {'B/part':>7}")
+            f"{'kern':>6} {'ghosts':>6} {'RSS MB':>8} {'B/part':>7} {'grav/hyd':>8} "
+            f"{'dE':>9}")
     out = [head, "-" * len(head)]
     for r in rows:
         cost = r["loop"] * r["ranks"] / max(r["updates"], 1) * 1e6
@@ -218,9 +259,13 @@ def table(rows, fixed_mb):
         out.append(f"{r['name']:<9} {r['N']:>9} {r['ranks']:>5} {r['wall']:>8.1f} "
                    f"{r['loop']:>8.1f} {r['steps']:>6} {r['updates'] / 1e6:>7.2f} {mps:>8.3f} "
                    f"{cost:>8.2f} {ratio} {r['half']:>6.1f} {r['rows']:>6.1f} {r['kern']:>6.1f} "
-                   f"{r['ghosts']:>6.2f} {r['rss_mb']:>8.1f} {per:>7.0f}")
+                   f"{r['ghosts']:>6.2f} {r['rss_mb']:>8.1f} {per:>7.0f} "
+                   f"{r['kspace_s'] / r['pair_s']:>8.2f} {r['energy']:>9.2e}")
     out.append(f"fixed cost of the lmp processes (32-particle box): {fixed_mb:.1f} MB; "
-               "SWIFT rows: B/part is its whole RSS per particle, 'ranks' its threads")
+               "SWIFT rows: B/part is its whole RSS per particle, 'ranks' its threads; "
+               "grav/hyd: LAMMPS' Kspace over Pair seconds (the gravity kspace against the "
+               "hydro, for the same particle-updates); dE: the Evrard run's final relative "
+               "energy error")
     return "\n".join(out)
 
 
@@ -247,7 +292,7 @@ def main():
     wanted = [r for r in args.rows.split(",") if r]
     for r in wanted:
         if r not in SCENES and r not in SWIFT_ROWS:
-            parser.error(f"unknown row '{r}'; allowed: {', '.join(ORDER)}")
+            parser.error(f"unknown row '{r}'; allowed: {', '.join(ORDER)}, evrard40t3i")
     fixed = run_lammps("fixed", args.np, args.outdir, env)
     rows = []
     for name in wanted:

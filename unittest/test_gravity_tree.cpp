@@ -131,7 +131,14 @@ GravityTree make_tree(Cloud &c, int leaf = 8)
 {
   GravityTree t(leaf);
   t.build(c.n(), c.x.data(), c.tie.data());
-  t.refit(c.x.data(), c.m.data(), c.h.data(), c.zo.data());
+  t.refit([&c](int i, double &x, double &y, double &z, double &m, double &h, double &zo) {
+    x = c.x[i][0];
+    y = c.x[i][1];
+    z = c.x[i][2];
+    m = c.m[i];
+    h = c.h[i];
+    zo = c.zo[i];
+  });
   return t;
 }
 
@@ -282,7 +289,8 @@ TEST(GravityTree, RelativeCriterionFollowsAlpha)
     double s2 = 0.0;
     for (int g : groups) {
       const GravityNode &n = t.node(g);
-      TargetBox box{{n.lo[0], n.lo[1], n.lo[2]}, {n.hi[0], n.hi[1], n.hi[2]}, n.hmax, amin};
+      const double b = n.bmax;    // (a box around the node's sphere)
+      TargetBox box{{n.x - b, n.y - b, n.z - b}, {n.x + b, n.y + b, n.z + b}, n.hmax, amin};
       lists.clear();
       accepted.clear();
       leaves.clear();

@@ -17,14 +17,8 @@ namespace SPHAstro {
 
 void GravityItems::clear()
 {
-  x.clear();
-  y.clear();
-  z.clear();
-  m.clear();
-  h.clear();
-  zo.clear();
-  q.clear();
-  b.clear();
+  for (auto *v : {&x, &y, &z, &m, &h, &zo, &moments}) v->clear();
+  mp.clear();
   tie.clear();
 }
 
@@ -37,23 +31,28 @@ void GravityItems::add_particle(double px, double py, double pz, double pm, doub
   m.push_back(pm);
   h.push_back(ph);
   zo.push_back(pzo);
-  for (int k = 0; k < 6; k++) q.push_back(0.0);
-  b.push_back(0.0);
+  mp.push_back(-1);
   tie.push_back(order);
 }
 
 void GravityItems::add_multipole(double px, double py, double pz, double pm, const double *qm,
                                  double pb, int64_t order)
 {
+  // a node of one point mass (radius 0) is a particle of softening length 0: it is only ever
+  // summed far beyond every softening support
+  if (!(pb > 0.0)) {
+    add_particle(px, py, pz, pm, 0.0, 0.0, order);
+    return;
+  }
   x.push_back(px);
   y.push_back(py);
   z.push_back(pz);
   m.push_back(pm);
   h.push_back(0.0);
   zo.push_back(0.0);
-  for (int k = 0; k < 6; k++) q.push_back(qm[k]);
-  // a radius > 0 marks a multipole; a node of one point mass is sent as a particle
-  b.push_back(pb > 0.0 ? pb : 0.0);
+  mp.push_back(static_cast<int>(moments.size() / 7));
+  moments.insert(moments.end(), qm, qm + 6);
+  moments.push_back(pb);
   tie.push_back(order);
 }
 
@@ -142,6 +141,7 @@ void GravityTree::make_structure(int n, const double *px, const double *py, cons
       }
       node.nparticles = np;
     }
+  nodes_.shrink_to_fit();
   // (the keys and positions of the build serve only the structure)
   std::vector<uint64_t>().swap(keys_);
   std::vector<double>().swap(sx_);
@@ -254,64 +254,53 @@ void GravityTree::build(int n, const double *const *x, const int64_t *tie)
   m_.assign(n, 0.0);
   h_.assign(n, 0.0);
   zo_.assign(n, 0.0);
-  q_.clear();
-  b_.clear();
+  mp_.clear();
+  mp_moments_.clear();
 }
 
-void GravityTree::refit(const double *const *x, const double *m, const double *h, const double *zo)
-{
-  const int n = size();
-  for (int k = 0; k < n; k++) {
-    const int i = perm_[k];
-    x_[k] = x[i][0];
-    y_[k] = x[i][1];
-    z_[k] = x[i][2];
-    m_[k] = m[i];
-    h_[k] = h[i];
-    zo_[k] = zo ? zo[i] : 0.0;
+namespace {
+  // v[k] = v[perm[k]] for k < n (count: values per item), through one buffer
+  template <class T> void permute(std::vector<T> &v, const std::vector<int> &perm, int count = 1)
+  {
+    std::vector<T> out(v.size());
+    for (size_t k = 0; k < perm.size(); k++)
+      for (int c = 0; c < count; c++) out[count * k + c] = v[count * perm[k] + c];
+    v.swap(out);
   }
-  moments();
-}
+}    // namespace
 
-void GravityTree::build(const GravityItems &items)
+void GravityTree::build(GravityItems &items)
 {
   const int n = items.size();
   std::vector<char> is_multipole(n);
-  for (int i = 0; i < n; i++) is_multipole[i] = items.b[i] > 0.0;
+  for (int i = 0; i < n; i++) is_multipole[i] = items.mp[i] >= 0;
   make_structure(n, items.x.data(), items.y.data(), items.z.data(), items.tie.data(),
                  &is_multipole);
-  x_.resize(n);
-  y_.resize(n);
-  z_.resize(n);
-  m_.resize(n);
-  h_.resize(n);
-  zo_.resize(n);
-  q_.resize(6 * static_cast<size_t>(n));
-  b_.resize(n);
-  for (int k = 0; k < n; k++) {
-    const int i = perm_[k];
-    x_[k] = items.x[i];
-    y_[k] = items.y[i];
-    z_[k] = items.z[i];
-    m_[k] = items.m[i];
-    h_[k] = items.h[i];
-    zo_[k] = items.zo[i];
-    for (int c = 0; c < 6; c++) q_[6 * k + c] = items.q[6 * i + c];
-    b_[k] = items.b[i];
-  }
+  // the items' arrays become the tree's, in tree order
+  x_.swap(items.x);
+  y_.swap(items.y);
+  z_.swap(items.z);
+  m_.swap(items.m);
+  h_.swap(items.h);
+  zo_.swap(items.zo);
+  mp_.swap(items.mp);
+  mp_moments_.swap(items.moments);    // (indexed through mp_: not permuted)
+  for (auto *v : {&x_, &y_, &z_, &m_, &h_, &zo_}) permute(*v, perm_);
+  permute(mp_, perm_);
+  items = GravityItems();    // (its arrays now hold the tree's old ones: freed)
   moments();
 }
 
 // bottom-up (children come after their parent in nodes_): monopole, centre of mass, second
-// moment (parallel-axis shift of the children's), bounding box, b_max, h_max
+// moment (parallel-axis shift of the children's), b_max (a leaf's from its items, an internal
+// node's from its children's spheres), h_max
 void GravityTree::moments()
 {
-  const bool items_with_extent = !b_.empty();
+  const bool items_with_extent = !mp_.empty();
   for (int k = static_cast<int>(nodes_.size()) - 1; k >= 0; k--) {
     GravityNode &node = nodes_[k];
     double M = 0.0, cx = 0.0, cy = 0.0, cz = 0.0;
     double q[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     double bmax = 0.0, hmax = 0.0;
     if (node.nchild == 0) {
       const int a = node.first, e = node.first + node.count;
@@ -320,22 +309,15 @@ void GravityTree::moments()
         cx += m_[j] * x_[j];
         cy += m_[j] * y_[j];
         cz += m_[j] * z_[j];
-        const double b = items_with_extent ? b_[j] : 0.0;
-        lo[0] = std::min(lo[0], x_[j] - b);
-        hi[0] = std::max(hi[0], x_[j] + b);
-        lo[1] = std::min(lo[1], y_[j] - b);
-        hi[1] = std::max(hi[1], y_[j] + b);
-        lo[2] = std::min(lo[2], z_[j] - b);
-        hi[2] = std::max(hi[2], z_[j] + b);
       }
       if (M > 0.0) {
         cx /= M;
         cy /= M;
         cz /= M;
-      } else {
-        cx = 0.5 * (lo[0] + hi[0]);
-        cy = 0.5 * (lo[1] + hi[1]);
-        cz = 0.5 * (lo[2] + hi[2]);
+      } else {    // (massless: the first item's position)
+        cx = x_[a];
+        cy = y_[a];
+        cz = z_[a];
       }
       for (int j = a; j < e; j++) {
         const double dx = x_[j] - cx, dy = y_[j] - cy, dz = z_[j] - cz;
@@ -346,9 +328,10 @@ void GravityTree::moments()
         q[3] += mj * dx * dy;
         q[4] += mj * dx * dz;
         q[5] += mj * dy * dz;
-        const double b = items_with_extent ? b_[j] : 0.0;
-        if (b > 0.0)
-          for (int c = 0; c < 6; c++) q[c] += q_[6 * j + c];
+        const int mp = items_with_extent ? mp_[j] : -1;
+        const double b = mp >= 0 ? mp_moments_[7 * mp + 6] : 0.0;
+        if (mp >= 0)
+          for (int c = 0; c < 6; c++) q[c] += mp_moments_[7 * mp + c];
         bmax = std::max(bmax, std::sqrt(dx * dx + dy * dy + dz * dz) + b);
       }
       for (int j = a; j < a + node.nparticles; j++) hmax = std::max(hmax, h_[j]);
@@ -360,10 +343,6 @@ void GravityTree::moments()
         cx += ch.m * ch.x;
         cy += ch.m * ch.y;
         cz += ch.m * ch.z;
-        for (int d = 0; d < 3; d++) {
-          lo[d] = std::min(lo[d], ch.lo[d]);
-          hi[d] = std::max(hi[d], ch.hi[d]);
-        }
         hmax = std::max(hmax, ch.hmax);
       }
       if (M > 0.0) {
@@ -371,11 +350,10 @@ void GravityTree::moments()
         cy /= M;
         cz /= M;
       } else {
-        cx = 0.5 * (lo[0] + hi[0]);
-        cy = 0.5 * (lo[1] + hi[1]);
-        cz = 0.5 * (lo[2] + hi[2]);
+        cx = nodes_[c0].x;
+        cy = nodes_[c0].y;
+        cz = nodes_[c0].z;
       }
-      double bchildren = 0.0;
       for (int c = c0; c < c1; c++) {
         const GravityNode &ch = nodes_[c];
         const double dx = ch.x - cx, dy = ch.y - cy, dz = ch.z - cz;
@@ -385,22 +363,14 @@ void GravityTree::moments()
         q[3] += ch.q[3] + ch.m * dx * dy;
         q[4] += ch.q[4] + ch.m * dx * dz;
         q[5] += ch.q[5] + ch.m * dy * dz;
-        bchildren = std::max(bchildren, std::sqrt(dx * dx + dy * dy + dz * dz) + ch.bmax);
+        bmax = std::max(bmax, std::sqrt(dx * dx + dy * dy + dz * dz) + ch.bmax);
       }
-      // the farthest corner of the bounding box bounds it too
-      const double fx = std::max(cx - lo[0], hi[0] - cx), fy = std::max(cy - lo[1], hi[1] - cy),
-                   fz = std::max(cz - lo[2], hi[2] - cz);
-      bmax = std::min(bchildren, std::sqrt(fx * fx + fy * fy + fz * fz));
     }
     node.m = M;
     node.x = cx;
     node.y = cy;
     node.z = cz;
     for (int c = 0; c < 6; c++) node.q[c] = q[c];
-    for (int d = 0; d < 3; d++) {
-      node.lo[d] = lo[d];
-      node.hi[d] = hi[d];
-    }
     node.bmax = bmax;
     node.hmax = hmax;
   }
@@ -414,20 +384,46 @@ void GravityTree::walk(const TargetBox &box, const OpeningCriterion &crit,
   stack.clear();
   stack.push_back(0);
   const bool cut = std::isfinite(crit.cutoff);
-  const double cutoff2 = crit.cutoff * crit.cutoff;
   while (!stack.empty()) {
     const int k = stack.back();
     stack.pop_back();
     const GravityNode &n = nodes_[k];
-    if (cut) {    // the nearest points of the two boxes
+    if (cut) {    // the node's sphere and the box
       double d2 = 0.0;
+      const double c[3] = {n.x, n.y, n.z};
       for (int d = 0; d < 3; d++) {
-        const double e = std::max(std::max(n.lo[d] - box.hi[d], box.lo[d] - n.hi[d]), 0.0);
+        const double e = std::max(std::max(box.lo[d] - c[d], c[d] - box.hi[d]), 0.0);
         d2 += e * e;
       }
-      if (d2 >= cutoff2) continue;
+      if (d2 >= (crit.cutoff + n.bmax) * (crit.cutoff + n.bmax)) continue;
     }
     if (accepted(n, box, crit))
+      accepted_nodes.push_back(k);
+    else if (n.nchild == 0)
+      leaves.push_back(k);
+    else
+      for (int c = n.child + n.nchild - 1; c >= n.child; c--) stack.push_back(c);
+  }
+}
+
+void GravityTree::walk(const std::vector<TargetBox> &boxes, const OpeningCriterion &crit,
+                       std::vector<int> &accepted_nodes, std::vector<int> &leaves) const
+{
+  if (nodes_.empty() || boxes.empty()) return;
+  std::vector<int> &stack = stack_;
+  stack.clear();
+  stack.push_back(0);
+  while (!stack.empty()) {
+    const int k = stack.back();
+    stack.pop_back();
+    const GravityNode &n = nodes_[k];
+    bool all = true;
+    for (const TargetBox &box : boxes)
+      if (!accepted(n, box, crit)) {
+        all = false;
+        break;
+      }
+    if (all)
       accepted_nodes.push_back(k);
     else if (n.nchild == 0)
       leaves.push_back(k);
@@ -456,10 +452,10 @@ void GravityTree::groups(int group_size, std::vector<int> &out) const
 
 double GravityTree::memory_usage() const
 {
-  return nodes_.capacity() * sizeof(GravityNode) + perm_.capacity() * sizeof(int) +
-      keys_.capacity() * sizeof(uint64_t) +
+  return nodes_.capacity() * sizeof(GravityNode) +
+      (perm_.capacity() + mp_.capacity()) * sizeof(int) + keys_.capacity() * sizeof(uint64_t) +
       (x_.capacity() + y_.capacity() + z_.capacity() + m_.capacity() + h_.capacity() +
-       zo_.capacity() + q_.capacity() + b_.capacity()) *
+       zo_.capacity() + mp_moments_.capacity()) *
       sizeof(double);
 }
 

@@ -21,7 +21,7 @@
 // one child are collapsed. A leaf holds at most leaf_size items (or items with equal keys). A
 // leaf's particles come before its multipole items.
 //
-// refit() recomputes every node's moments, bounding box, b_max and h_max from the items'
+// refit() recomputes every node's moments, b_max and h_max from the items'
 // current positions, bottom-up, without changing the structure: the tree made at a
 // re-neighbouring stays valid as the particles move (only its shape may loosen).
 //
@@ -55,9 +55,9 @@ namespace SPHAstro {
 // the items of a tree built from a list (a tree of imported items): particles and multipoles
 struct GravityItems {
   std::vector<double> x, y, z, m, h, zo;    // centre, mass, softening length, zeta/Omega
-  std::vector<double> q;                    // multipoles: second moment, 6 per item
-  std::vector<double> b;                    // multipoles: radius holding the mass (0: particle)
-  std::vector<int64_t> tie;                 // order among equal keys
+  std::vector<int> mp;                      // index of the item's multipole (-1: a particle)
+  std::vector<double> moments;    // per multipole: second moment (6), radius holding the mass
+  std::vector<int64_t> tie;       // order among equal keys
 
   int size() const { return static_cast<int>(x.size()); }
   void clear();
@@ -69,14 +69,13 @@ struct GravityItems {
 };
 
 struct GravityNode {
-  double x, y, z, m;      // centre of mass, mass
-  double q[6];            // second moment about the centre of mass: xx yy zz xy xz yz
-  double bmax;            // all of the node's mass lies within bmax of (x, y, z)
-  double hmax;            // largest softening length of the node's particles (0: none)
-  double lo[3], hi[3];    // bounding box of the node's mass
-  int first, count;       // items [first, first + count) in tree order
-  int nparticles;         // leaves: items [first, first + nparticles) are particles
-  int child, nchild;      // children: nodes [child, child + nchild); nchild = 0: a leaf
+  double x, y, z, m;    // centre of mass, mass
+  double q[6];          // second moment about the centre of mass: xx yy zz xy xz yz
+  double bmax;          // all of the node's mass lies within bmax of (x, y, z)
+  double hmax;          // largest softening length of the node's particles (0: none)
+  int first, count;     // items [first, first + count) in tree order
+  int nparticles;       // leaves: items [first, first + nparticles) are particles
+  int child, nchild;    // children: nodes [child, child + nchild); nchild = 0: a leaf
 };
 
 // a group of targets: the box holding them, their largest softening length and, for the
@@ -99,18 +98,25 @@ struct OpeningCriterion {
 class GravityTree {
  public:
   static constexpr int KEY_BITS = 21;    // per dimension: 63-bit Morton keys
-  static constexpr int DEFAULT_LEAF_SIZE = 8;
+  static constexpr int DEFAULT_LEAF_SIZE = 16;
 
   explicit GravityTree(int leaf_size = DEFAULT_LEAF_SIZE) : leaf_size_(leaf_size) {}
 
   // structure from the positions of particles 0..n-1 (x[i][0..2]), ties by tie[i]; the moments
   // need refit()
   void build(int n, const double *const *x, const int64_t *tie);
-  // moments, boxes, b_max, h_max from the particles' current x, m, h and zeta/Omega (zo may be
-  // null: zero), indexed as at the build
-  void refit(const double *const *x, const double *m, const double *h, const double *zo);
-  // structure and moments of a list of particles and multipoles
-  void build(const GravityItems &items);
+  // moments, b_max, h_max from the particles' current values, indexed as at the build:
+  // item(i, x, y, z, m, h, zo) gives particle i's position, mass, softening length and
+  // zeta/Omega
+  template <class Item> void refit(Item &&item)
+  {
+    const int n = size();
+    for (int k = 0; k < n; k++) item(perm_[k], x_[k], y_[k], z_[k], m_[k], h_[k], zo_[k]);
+    moments();
+  }
+  // structure and moments of a list of particles and multipoles (whose arrays the tree takes:
+  // items is empty afterwards)
+  void build(GravityItems &items);
 
   int size() const { return static_cast<int>(x_.size()); }
   int nodes() const { return static_cast<int>(nodes_.size()); }
@@ -126,16 +132,22 @@ class GravityTree {
   const double *m() const { return m_.data(); }
   const double *h() const { return h_.data(); }
   const double *zo() const { return zo_.data(); }
-  // multipole items (trees of imported items): second moment (6 per item) and radius
-  const double *item_q(int k) const { return &q_[6 * k]; }
-  double item_b(int k) const { return b_.empty() ? 0.0 : b_[k]; }
+  // multipole items (trees of imported items): second moment (6 values) and radius
+  const double *item_q(int k) const { return &mp_moments_[7 * mp_[k]]; }
+  double item_b(int k) const
+  {
+    return mp_.empty() || mp_[k] < 0 ? 0.0 : mp_moments_[7 * mp_[k] + 6];
+  }
   int depth() const { return depth_; }
 
   // the accepted nodes (their multipoles serve every target of the box) and the leaves whose
-  // items are summed one by one, in a fixed order (depth first); nodes whose bounding box lies
+  // items are summed one by one, in a fixed order (depth first); nodes whose sphere b_max lies
   // crit.cutoff or farther from the targets' box are left out
   void walk(const TargetBox &box, const OpeningCriterion &crit, std::vector<int> &accepted,
             std::vector<int> &leaves) const;
+  // the same for several boxes: a node is accepted when it is for every one of them
+  void walk(const std::vector<TargetBox> &boxes, const OpeningCriterion &crit,
+            std::vector<int> &accepted, std::vector<int> &leaves) const;
   // is node k's multipole accepted for every point of box
   bool accepted(const GravityNode &n, const TargetBox &box, const OpeningCriterion &crit) const;
 
@@ -150,7 +162,9 @@ class GravityTree {
   int depth_ = 0;
   std::vector<GravityNode> nodes_;
   std::vector<int> perm_;    // tree position -> index at the build
-  std::vector<double> x_, y_, z_, m_, h_, zo_, q_, b_;
+  std::vector<double> x_, y_, z_, m_, h_, zo_;
+  std::vector<int> mp_;                 // trees of items: the item's multipole (-1: particle)
+  std::vector<double> mp_moments_;      // ... its second moment and radius (7 each)
   std::vector<uint64_t> keys_;          // the build's keys in tree order
   std::vector<double> sx_, sy_, sz_;    // the build's positions in tree order
   mutable std::vector<int> stack_;      // of walk() and groups()

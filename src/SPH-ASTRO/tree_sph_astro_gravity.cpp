@@ -267,24 +267,27 @@ void TreeSPHAstroGravity::compute(int eflag, int vflag)
   double t1 = MPI_Wtime();
   time_build_ += t1 - t0;
 
-  mass_.resize(n);
-  soft_.resize(n);
-  zo_.resize(n);
+  double **x = atom->x;
   const double *rmass = atom->rmass;
   const double *mass = atom->mass;
   const int *type = atom->type;
   const double *zo = pair_->zeta_over_omega();
-  for (int i = 0; i < n; i++) {
-    mass_[i] = rmass ? rmass[i] : mass[type[i]];
-    soft_[i] = pair_->softening_length(i);
-    if (!(soft_[i] > 0.0) || !std::isfinite(soft_[i]))
+  local_.refit([&](int i, double &px, double &py, double &pz, double &m, double &h, double &z) {
+    px = x[i][0];
+    py = x[i][1];
+    pz = x[i][2];
+    m = rmass ? rmass[i] : mass[type[i]];
+    h = pair_->softening_length(i);
+    z = zo ? zo[i] : 0.0;
+  });
+  // (checked after: an atom without a softening length stops the run)
+  const double *lh = local_.h();
+  for (int k = 0; k < n; k++)
+    if (!(lh[k] > 0.0) || !std::isfinite(lh[k]))
       error->one(FLERR,
                  "{}: atom {} has softening length {} on step {}; it must be > 0 (the SPH "
                  "smoothing length d_h, or pair_style sph/astro/gravity ... h VALUE)",
-                 STYLE, tag[i], soft_[i], update->ntimestep);
-    zo_[i] = zo ? zo[i] : 0.0;
-  }
-  local_.refit(atom->x, mass_.data(), soft_.data(), zo ? zo_.data() : nullptr);
+                 STYLE, tag[local_.index(k)], lh[k], update->ntimestep);
   t0 = MPI_Wtime();
   time_moments_ += t0 - t1;
 
@@ -340,8 +343,8 @@ void TreeSPHAstroGravity::compute(int eflag, int vflag)
 
 /* ----------------------------------------------------------------------
    locally essential trees: to each rank with targets, this rank's multipoles accepted for
-   that rank's target box and the particles of its leaves that are not; a message per rank
-   of records: particle (0, x, y, z, m, h, zeta/Omega), multipole (1, x, y, z, m, q[6], b)
+   all of that rank's target boxes and the particles of its leaves that are not; a message per
+   rank of records: particle (0, x, y, z, m, h, zeta/Omega), multipole (1, x, y, z, m, q[6], b)
 ------------------------------------------------------------------------- */
 
 void TreeSPHAstroGravity::exchange()
@@ -353,38 +356,62 @@ void TreeSPHAstroGravity::exchange()
     last_.imported = 0.0;
     return;
   }
-  // this rank's target box: lo, hi, largest h, smallest |a|, number of targets
-  constexpr int NBOX = 9;
-  double mine[NBOX] = {INFINITY,  INFINITY, INFINITY, -INFINITY, -INFINITY,
-                       -INFINITY, 0.0,      INFINITY, 0.0};
+  // this rank's targets as boxes, one per node of the tree at the level of about BOXES nodes:
+  // lo, hi, largest h, smallest |a| (0: unknown) of its targets
+  constexpr int NBOX = 8, BOXES = 64;
+  std::vector<double> mine;
   const double *lx = local_.x(), *ly = local_.y(), *lz = local_.z(), *lh = local_.h();
   const double *accel = accel_index_ >= 0 ? atom->dvector[accel_index_] : nullptr;
-  for (int k = 0; k < local_.size(); k++) {
-    if (!target_[k]) continue;
-    mine[0] = std::min(mine[0], lx[k]);
-    mine[1] = std::min(mine[1], ly[k]);
-    mine[2] = std::min(mine[2], lz[k]);
-    mine[3] = std::max(mine[3], lx[k]);
-    mine[4] = std::max(mine[4], ly[k]);
-    mine[5] = std::max(mine[5], lz[k]);
-    mine[6] = std::max(mine[6], lh[k]);
-    if (accel) mine[7] = std::min(mine[7], accel[local_.index(k)]);
-    mine[8] += 1.0;
+  local_.groups(std::max(group_size_, local_.size() / BOXES), box_nodes_);
+  for (int g : box_nodes_) {
+    const GravityNode &node = local_.node(g);
+    double box[NBOX] = {INFINITY,  INFINITY,  INFINITY, -INFINITY,
+                        -INFINITY, -INFINITY, 0.0,      INFINITY};
+    bool any = false;
+    for (int k = node.first; k < node.first + node.count; k++) {
+      if (!target_[k]) continue;
+      any = true;
+      box[0] = std::min(box[0], lx[k]);
+      box[1] = std::min(box[1], ly[k]);
+      box[2] = std::min(box[2], lz[k]);
+      box[3] = std::max(box[3], lx[k]);
+      box[4] = std::max(box[4], ly[k]);
+      box[5] = std::max(box[5], lz[k]);
+      box[6] = std::max(box[6], lh[k]);
+      if (accel) box[7] = std::min(box[7], accel[local_.index(k)]);
+    }
+    if (!any) continue;
+    if (!accel || !std::isfinite(box[7])) box[7] = 0.0;
+    mine.insert(mine.end(), box, box + NBOX);
   }
-  if (!accel) mine[7] = 0.0;
-  std::vector<double> boxes(NBOX * nprocs);
-  MPI_Allgather(mine, NBOX, MPI_DOUBLE, boxes.data(), NBOX, MPI_DOUBLE, world);
+  const int nmine = static_cast<int>(mine.size());
+  std::vector<int> boxcounts(nprocs), boxdispls(nprocs);
+  MPI_Allgather(&nmine, 1, MPI_INT, boxcounts.data(), 1, MPI_INT, world);
+  int nboxes = 0;
+  for (int r = 0; r < nprocs; r++) {
+    boxdispls[r] = nboxes;
+    nboxes += boxcounts[r];
+  }
+  std::vector<double> boxes(nboxes);
+  MPI_Allgatherv(mine.data(), nmine, MPI_DOUBLE, boxes.data(), boxcounts.data(), boxdispls.data(),
+                 MPI_DOUBLE, world);
 
+  // to each rank with targets: a node's multipole if it is accepted for every one of that
+  // rank's boxes (each with its own h and |a|), else its children, and a leaf's particles
   std::vector<double> send;
   std::vector<int> sendcounts(nprocs, 0), senddispls(nprocs, 0);
+  std::vector<TargetBox> targets;
   for (int r = 0; r < nprocs; r++) {
     senddispls[r] = static_cast<int>(send.size());
-    const double *b = &boxes[NBOX * r];
-    if (r == comm->me || b[8] == 0.0 || local_.empty()) continue;
-    TargetBox box{{b[0], b[1], b[2]}, {b[3], b[4], b[5]}, b[6], std::isfinite(b[7]) ? b[7] : 0.0};
+    if (r == comm->me || boxcounts[r] == 0 || local_.empty()) continue;
+    targets.clear();
+    for (int b = 0; b < boxcounts[r] / NBOX; b++) {
+      const double *v = &boxes[boxdispls[r] + NBOX * b];
+      targets.push_back(TargetBox{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, v[6], v[7]});
+    }
     accepted_.clear();
     leaves_.clear();
-    local_.walk(box, crit_, accepted_, leaves_);
+    local_.walk(targets, crit_, accepted_, leaves_);
     for (int a : accepted_) {
       const GravityNode &n = local_.node(a);
       if (n.bmax > 0.0) {
@@ -425,8 +452,8 @@ void TreeSPHAstroGravity::exchange()
       }
     }
   }
-  imported_.build(import_items_);
   last_.imported = import_items_.size();
+  imported_.build(import_items_);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -534,29 +561,32 @@ template <bool CUBIC, bool ZETA> void TreeSPHAstroGravity::evaluate()
 
 std::string TreeSPHAstroGravity::run_summary()
 {
-  double local[10] = {evaluations_,  builds_,     target_sum_,    multipole_sum_, particle_sum_,
-                      imported_sum_, time_build_, time_moments_, time_exchange_, time_walks_},
-         all[10];
-  MPI_Allreduce(local, all, 10, MPI_DOUBLE, MPI_SUM, world);
+  double local[12] = {evaluations_,   builds_,        target_sum_,
+                      multipole_sum_, particle_sum_,  imported_sum_,
+                      time_build_,    time_moments_,  time_exchange_,
+                      time_walks_,    memory_usage(), static_cast<double>(atom->nlocal)},
+         all[12];
+  MPI_Allreduce(local, all, 12, MPI_DOUBLE, MPI_SUM, world);
   if (all[0] == 0.0) return {};
   const double ranks = comm->nprocs;
   return fmt::format(
       "tree/sph/astro/gravity: {:.0f} evaluations, {:.0f} tree builds per rank; {:.4g} "
       "targets per evaluation, each {:.1f} multipoles + {:.1f} particles; {:.4g} items "
       "imported per rank and evaluation; seconds per rank: builds {:.3g}, moments {:.3g}, "
-      "exchange {:.3g}, walks and sums {:.3g}",
+      "exchange {:.3g}, walks and sums {:.3g}; memory {:.0f} bytes per particle",
       all[0] / ranks, all[1] / ranks, all[2] / (all[0] / ranks),
-      all[2] > 0.0 ? all[3] / all[2] : 0.0, all[2] > 0.0 ? all[4] / all[2] : 0.0,
-      all[5] / all[0], all[6] / ranks, all[7] / ranks, all[8] / ranks, all[9] / ranks);
+      all[2] > 0.0 ? all[3] / all[2] : 0.0, all[2] > 0.0 ? all[4] / all[2] : 0.0, all[5] / all[0],
+      all[6] / ranks, all[7] / ranks, all[8] / ranks, all[9] / ranks,
+      all[11] > 0.0 ? all[10] / all[11] : 0.0);
 }
 
 double TreeSPHAstroGravity::memory_usage()
 {
   return local_.memory_usage() + imported_.memory_usage() + lists_.memory_usage() +
-      (pm_ ? pm_->memory_usage() : 0.0) +
-      (mass_.capacity() + soft_.capacity() + zo_.capacity()) * sizeof(double) +
-      built_tags_.capacity() * sizeof(tagint) + target_.capacity() +
+      (pm_ ? pm_->memory_usage() : 0.0) + built_tags_.capacity() * sizeof(tagint) +
+      target_.capacity() +
       (groups_.capacity() + accepted_.capacity() + leaves_.capacity()) * sizeof(int) +
-      (import_items_.x.capacity() * 15) * sizeof(double) +
-      import_items_.tie.capacity() * sizeof(int64_t);
+      (import_items_.x.capacity() * 6 + import_items_.moments.capacity()) * sizeof(double) +
+      import_items_.tie.capacity() * sizeof(int64_t) + import_items_.mp.capacity() * sizeof(int) +
+      (box_nodes_.capacity() * sizeof(int));
 }

@@ -78,12 +78,11 @@ class TreeSPHAstroGravity :
   SPHAstro::GravityTree imported_;    // what other ranks send (built at every evaluation)
   SPHAstro::GravityItems import_items_;
   SPHAstro::GravityInteractions lists_;
-  std::vector<int> groups_, accepted_, leaves_;
+  std::vector<int> groups_, accepted_, leaves_, box_nodes_;
   std::vector<tagint> built_tags_;    // tag of each local atom at the build
   bool built_ = false;
-  std::vector<double> mass_, soft_, zo_;    // per local atom: mass, softening length, zeta/Omega
-  std::vector<char> target_;                // per tree position: evaluated in this call
-  int accel_index_ = -1;    // relative criterion: |a| of the last evaluation (custom property)
+  std::vector<char> target_;    // per tree position: evaluated in this call
+  int accel_index_ = -1;        // relative criterion: |a| of the last evaluation (custom property)
 
   // figures: of the latest evaluation, and sums over the run
   Statistics last_;
