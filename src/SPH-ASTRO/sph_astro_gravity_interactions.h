@@ -39,9 +39,28 @@ class GravityInteractions {
   static constexpr int LANES = 8;
 
   void clear() { nm_ = np_ = 0; }
-  // pad the lists to whole lanes (before evaluate): massless multipoles and particles far away
-  void finish()
+  // pad the lists to whole lanes (before evaluate): massless multipoles and particles far away;
+  // and the particles that may be inside the softening support of a target in box (kernel
+  // radius R): those closer to it than R max(h of the box, their h); the sums inside the
+  // support look only at them (all of them without a box)
+  void finish(const TargetBox *box = nullptr, double R = 0.0)
   {
+    near_.resize(np_);
+    int nn = 0;
+    for (int k = 0; k < np_; k++) {
+      double d2 = 0.0;
+      if (box) {
+        const double c[3] = {px_[k], py_[k], pz_[k]};
+        for (int d = 0; d < 3; d++) {
+          const double e = std::max(std::max(box->lo[d] - c[d], c[d] - box->hi[d]), 0.0);
+          d2 += e * e;
+        }
+      }
+      const double rs = box ? R * std::max(box->hmax, ph_[k]) : 1.0;
+      near_[nn] = k;
+      nn += static_cast<int>(d2 < rs * rs);
+    }
+    nnear_ = nn;
     grow_multipoles(nm_ + LANES);
     grow_particles(np_ + LANES);
     const double q0[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
@@ -170,9 +189,10 @@ class GravityInteractions {
     }
     // particles inside the softening support
     if (CUBIC) {
-      inside_cubic<ZETA>(xi, yi, zi, hi, zoi, self, np, sx, sy, sz, sp);
+      inside_cubic<ZETA>(xi, yi, zi, hi, zoi, self, sx, sy, sz, sp);
     } else {
-      for (int k = 0; k < np; k++) {
+      for (int n = 0; n < nnear_; n++) {
+        const int k = near_[n];
         if (inside_[k] == 0.0 || (self >= 0 && pid_[k] == self)) continue;
         const double dx = xi - px_[k], dy = yi - py_[k], dz = zi - pz_[k];
         const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
@@ -291,12 +311,20 @@ class GravityInteractions {
   // closed forms of SoftenedCubic and KernelCubic::dw evaluated without branches (the same
   // polynomials; a pair at r = 0 has its potential and no force)
   template <bool ZETA>
-  void inside_cubic(double xi, double yi, double zi, double hi, double zoi, int self, int np,
-                    double &sx, double &sy, double &sz, double &sp)
+  void inside_cubic(double xi, double yi, double zi, double hi, double zoi, int self, double &sx,
+                    double &sy, double &sz, double &sp)
   {
+    // (the list of those inside, without branches, among the group's near ones)
     int ni = 0;
-    for (int k = 0; k < np; k++)
-      if (inside_[k] != 0.0 && !(self >= 0 && pid_[k] == self)) idx_[ni++] = k;
+    const double *inside = inside_.data();
+    const int *pid = pid_.data();
+    int *idx = idx_.data();
+    const int anyone = self < 0;
+    for (int n = 0; n < nnear_; n++) {
+      const int k = near_[n];
+      idx[ni] = k;
+      ni += static_cast<int>(inside[k] != 0.0) & (anyone | static_cast<int>(pid[k] != self));
+    }
     if (ni == 0) return;
     if (static_cast<int>(gx_.size()) < ni + LANES)
       for (auto *v : {&gx_, &gy_, &gz_, &gm_, &gh_, &gzo_}) v->resize(2 * (ni + LANES));
@@ -356,19 +384,23 @@ class GravityInteractions {
     }
   }
 
-  // SoftenedCubic::eval and KernelCubic::dw as selects (no branches, for the vector lanes)
+  // SoftenedCubic::eval and KernelCubic::dw as selects (no branches, for the vector lanes), with
+  // one division (the same polynomials; SoftenedCubic's divisions by constants become products
+  // with their reciprocals: round-off apart)
   static inline void cubic_softened(double q, double &fpot, double &fforce)
   {
+    constexpr double third = 1.0 / 3.0, sixth = 1.0 / 6.0, thirtieth = 1.0 / 30.0;
+    constexpr double fifteenth = 1.0 / 15.0;
     const double q2 = q * q;
-    const double qs = q < 1.0 ? 1.0 : q;
-    const double fp1 = q2 * (2.0 / 3.0 + q2 * (-0.3 + 0.1 * q)) - 1.4;
-    const double ff1 = q * (4.0 / 3.0 + q2 * (-1.2 + 0.5 * q));
+    const double qinv = 1.0 / (q < 1.0 ? 1.0 : q);
+    const double qinv2 = qinv * qinv;
+    const double fp1 = q2 * (2.0 * third + q2 * (-0.3 + 0.1 * q)) - 1.4;
+    const double ff1 = q * (4.0 * third + q2 * (-1.2 + 0.5 * q));
     const double fp2 =
-        q2 * (4.0 / 3.0 + q * (-1.0 + q * (0.3 - q / 30.0))) - 1.6 + 1.0 / (15.0 * qs);
-    const double ff2 = q * (8.0 / 3.0 + q * (-3.0 + q * (1.2 - q / 6.0))) - 1.0 / (15.0 * qs * qs);
-    const double fp3 = -1.0 / qs, ff3 = 1.0 / (qs * qs);
-    fpot = q < 1.0 ? fp1 : (q < 2.0 ? fp2 : fp3);
-    fforce = q < 1.0 ? ff1 : (q < 2.0 ? ff2 : ff3);
+        q2 * (4.0 * third + q * (-1.0 + q * (0.3 - q * thirtieth))) - 1.6 + fifteenth * qinv;
+    const double ff2 = q * (8.0 * third + q * (-3.0 + q * (1.2 - q * sixth))) - fifteenth * qinv2;
+    fpot = q < 1.0 ? fp1 : (q < 2.0 ? fp2 : -qinv);
+    fforce = q < 1.0 ? ff1 : (q < 2.0 ? ff2 : qinv2);
   }
   static inline double cubic_dw(double q)
   {
@@ -379,7 +411,7 @@ class GravityInteractions {
   double memory_usage() const
   {
     return (mx_.capacity() * 10 + px_.capacity() * 6) * sizeof(double) +
-        (pid_.capacity() + idx_.capacity()) * sizeof(int) +
+        (pid_.capacity() + idx_.capacity() + near_.capacity()) * sizeof(int) +
         (inside_.capacity() + 6 * gx_.capacity()) * sizeof(double);
   }
 
@@ -389,6 +421,8 @@ class GravityInteractions {
   std::vector<double> mx_, my_, mz_, mm_, qxx_, qyy_, qzz_, qxy_, qxz_, qyz_;
   std::vector<double> px_, py_, pz_, pm_, ph_, pzo_;
   std::vector<int> pid_, idx_;
+  std::vector<int> near_;    // the particles that may be inside a target's softening support
+  int nnear_ = 0;
   std::vector<double> inside_;
   std::vector<double> gx_, gy_, gz_, gm_, gh_, gzo_;    // the pairs inside the support
 

@@ -498,7 +498,7 @@ template <bool CUBIC, bool ZETA> void TreeSPHAstroGravity::evaluate()
     imported_.walk(box, crit_, accepted_, leaves_);
     for (int a : accepted_) lists_.add_node(imported_.node(a));
     for (int l : leaves_) lists_.add_leaf(imported_, imported_.node(l), -1);
-    lists_.finish();
+    lists_.finish(&box, R);
     targets += count;
     multipoles += count * static_cast<double>(lists_.multipoles());
     particles += count * static_cast<double>(lists_.particles());
