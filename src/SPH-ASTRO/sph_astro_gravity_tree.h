@@ -18,12 +18,14 @@
 // & Salmon 1993) of the positions at the build in the bounding cube of the items: items sorted
 // by key (ties by a caller's number, the atom tag, so that the order does not depend on the
 // order of the input), and a node is a run of items sharing a key prefix; chains of nodes with
-// one child are collapsed. A leaf holds at most leaf_size items (or items with equal keys). A
-// leaf's particles come before its multipole items.
+// one child are collapsed. A leaf holds at most leaf_size items; items whose keys are equal
+// (closer than the key resolution, which one item far from the rest makes coarse) are halved
+// at the middle of their box instead, down to coincident items. A leaf's particles come before
+// its multipole items.
 //
-// refit() recomputes every node's moments, b_max and h_max from the items'
-// current positions, bottom-up, without changing the structure: the tree made at a
-// re-neighbouring stays valid as the particles move (only its shape may loosen).
+// refit() recomputes every node's moments, b_max and h_max from the items' current positions,
+// bottom-up, without changing the structure: the tree made at a re-neighbouring stays valid as
+// the particles move (only its shape may loosen).
 //
 // walk() lists, for a group of targets inside a box, the nodes whose multipole expansion is
 // accepted for every point of that box, and the leaves to be summed item by item (Barnes 1990,
