@@ -6,6 +6,8 @@
 # Helpers that declare the ctests of unittest/CMakeLists.txt. Every test carries one or more
 # of the labels
 #   unit    pure C++ units and the Python reference solvers, no LAMMPS (seconds: the inner loop)
+#   long    a minute or more each (a second plugin build, a long MSM run): run by tools/test.sh
+#           --all and CI, left out of tools/test.sh
 #   lammps  GoogleTest executables that drive LAMMPS through its C++ library interface
 #   scene   short scenes run with lmp or Python and analysed, with asserted bounds
 #   mpi     runs on several MPI ranks (the MPI equivalence tests)

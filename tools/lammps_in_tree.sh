@@ -13,7 +13,8 @@
 #                                            src/SPH-ASTRO; exit 1 (with the command to run)
 #                                            when there is none
 #   tools/lammps_in_tree.sh --run CMD...     run CMD with that lmp first on PATH and no
-#                                            LAMMPS_PLUGIN_PATH (used by the in-tree ctest)
+#                                            LAMMPS_PLUGIN_PATH (used by the in-tree ctest);
+#                                            exit 77 (skipped) when there is none
 #
 # The LAMMPS source tree is $LAMMPS_SOURCE_DIR, else the 4 Feb 2025 tree that
 # tools/fetch_lammps.sh unpacks into the cache (fetched when missing, build mode only).
@@ -134,7 +135,8 @@ case "${1:-}" in
   --run)
     shift
     [ $# -ge 1 ] || die "usage: lammps_in_tree.sh --run CMD..."
-    lmp=$(find_lmp)
+    # (not built for the current sources: exit status 77, which ctest reports as skipped)
+    lmp=$(find_lmp) || { echo "lammps_in_tree: skipped: no in-tree lmp for the current sources"; exit 77; }
     # the binary must be the in-tree one: SPH-ASTRO among its installed packages
     help=$("$lmp" -h) || die "$lmp -h failed"
     pkgs=$(sed -n '/^Installed packages:/,/^List of individual style/p' <<<"$help")

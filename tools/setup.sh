@@ -4,10 +4,12 @@
 # SPH-ASTRO one-command setup: installs the Debian packages (tools/debian-packages.txt),
 # obtains, builds and installs LAMMPS 4 Feb 2025 (cached in ~/.cache/sph-astro, reused when
 # present), builds the plugin and the tests in ./build against it (find_package(LAMMPS)),
-# builds lmp with SPH-ASTRO as a standard package (tools/lammps_in_tree.sh, for its ctest),
 # then runs the flagship Sod shock tube and prints its errors and wall time.
 #   tools/setup.sh                 set up and run the flagship scene
 #   tools/setup.sh --no-run        set up only
+#   tools/setup.sh --in-tree       also build lmp with SPH-ASTRO as a standard package
+#                                  (tools/lammps_in_tree.sh, about 10 minutes the first time;
+#                                  its ctest is skipped without it)
 #   LAMMPS_SOURCE_DIR=/path tools/setup.sh
 #                                  build your own LAMMPS source tree (nothing downloaded)
 #   LAMMPS_DIR=<prefix>/lib/cmake/LAMMPS LAMMPS_SOURCE_DIR=/path tools/setup.sh
@@ -15,8 +17,14 @@
 #                                  packages) and the source tree it was built from
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-run_flagship=1
-[ "${1:-}" = "--no-run" ] && run_flagship=0
+run_flagship=1 in_tree=0
+for arg in "$@"; do
+  case $arg in
+    --no-run) run_flagship=0 ;;
+    --in-tree) in_tree=1 ;;
+    *) echo "setup: unknown option $arg (allowed: --no-run, --in-tree)" >&2; exit 2 ;;
+  esac
+done
 
 mapfile -t packages < <(grep -v '^#' "$root/tools/debian-packages.txt")
 missing=()
@@ -46,8 +54,10 @@ cmake -S "$root/cmake" -B "$root/build" -D "LAMMPS_DIR=$lammps_dir" \
 cmake --build "$root/build" -j "$(nproc)" >/dev/null
 "$root/tools/install_python.sh" "$root/build"
 echo "setup: built $root/build/plugins/sphastroplugin.so; 'source build/env.sh' puts lmp in reach"
-LAMMPS_SOURCE_DIR=$lammps_src "$root/tools/lammps_in_tree.sh" >/dev/null
-echo "setup: built lmp with SPH-ASTRO as a standard package ($(LAMMPS_SOURCE_DIR=$lammps_src "$root/tools/lammps_in_tree.sh" --path))"
+if [ $in_tree = 1 ]; then
+  LAMMPS_SOURCE_DIR=$lammps_src "$root/tools/lammps_in_tree.sh" >/dev/null
+  echo "setup: built lmp with SPH-ASTRO as a standard package ($(LAMMPS_SOURCE_DIR=$lammps_src "$root/tools/lammps_in_tree.sh" --path))"
+fi
 
 if [ $run_flagship = 1 ]; then
   "$root/examples/sod/run.sh" 1

@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # SPH-ASTRO - astrophysical SPH for LAMMPS. Distributed under the GNU General Public License
 # version 2 (the same licence as LAMMPS); see the LICENSE file.
-# Run the whole SPH-ASTRO test suite: checks that the set-up is there (Debian packages, the
-# installed LAMMPS, build/, the in-tree lmp of the current sources), brings build/ up to date
-# with the sources and runs ctest (arguments are passed on: tools/test.sh -L unit).
+# Run the SPH-ASTRO test suite: checks that the set-up is there (Debian packages, the installed
+# LAMMPS, build/), brings build/ up to date with the sources and runs ctest on all cores, all
+# tests but those labelled long (a minute or more each); --all runs them too (CI does). Other
+# arguments are passed on to ctest (tools/test.sh -L unit). The in-tree test is skipped unless
+# tools/setup.sh --in-tree has built that lmp for the current sources.
 # Installs nothing: when something is missing it names it and the command that sets it up.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -19,8 +21,6 @@ if [ ! -f "$root/build/CMakeCache.txt" ] || [ ! -f "$root/build/env.sh" ]; then
   problems+=("build/ is not configured")
 elif [ ! -f "$lammps_dir/LAMMPSConfig.cmake" ]; then
   problems+=("no installed LAMMPS at '$lammps_dir' (LAMMPS_DIR of build/)")
-elif ! LAMMPS_SOURCE_DIR=$lammps_src "$root/tools/lammps_in_tree.sh" --path >/dev/null 2>&1; then
-  problems+=("no lmp with SPH-ASTRO built in for the current src/SPH-ASTRO")
 fi
 if [ ${#problems[@]} -gt 0 ]; then
   printf 'test: %s\n' "${problems[@]}" >&2
@@ -28,4 +28,9 @@ if [ ${#problems[@]} -gt 0 ]; then
   exit 1
 fi
 cmake --build "$root/build" -j "$(nproc)" >/dev/null
-ctest --test-dir "$root/build" --output-on-failure "$@"
+select=(-LE long)
+if [ "${1:-}" = --all ]; then
+  select=()
+  shift
+fi
+ctest --test-dir "$root/build" --output-on-failure -j "$(nproc)" ${select[@]+"${select[@]}"} "$@"
