@@ -52,7 +52,9 @@ Part B: the Evrard collapse to t = 0.8 side by side. SPH-ASTRO: `mpirun -np NP l
   u = 0.05; generated here with a fixed seed and SPH-ASTRO's N) with its published evrard.yml
   (CFL 0.1, dt_max 1e-3, softening 0.001; read from the SWIFT tree, only file_name, time_end and
   the softening replaced), `--hydro --self-gravity --limiter --threads=NT`, and once more with
-  the softening raised to the mean h of SPH-ASTRO's initial conditions of the same N. Reported:
+  the softening raised to the mean h of SPH-ASTRO's initial conditions of the same N (--matched:
+  also with that softening, CFL 0.3 and dt_max 0.05, the Courant number and top step of
+  SPH-ASTRO's run; the two codes define their Courant conditions differently). Reported:
   wall time around each run and the code's own (LAMMPS' loop time; SWIFT's clock at "main:
   done"), steps, particle updates, relative energy error (E - E0)/|E0| at the end (SWIFT: its
   statistics.txt, kinetic + internal + potential; SPH-ASTRO: compute sph/astro/global).
@@ -60,7 +62,8 @@ Part B: the Evrard collapse to t = 0.8 side by side. SPH-ASTRO: `mpirun -np NP l
 Usage: python3 tools/compare_swift_gravity.py --swift /path/to/swift
        [--swift-checks /path/to/swift_with_checks] [--outdir build/output/compare_swift_gravity]
        [--part A|B|all] [--states ic,t0.6] [--relative 0.002] [--epsilon-fmm 0.001]
-       [--repeats 2] [--np 2] [--threads 2] [--evals 10] [--sizes 16,24] [--swift-box 100]
+       [--repeats 3] [--matched] [--np 2] [--threads 2] [--evals 10] [--sizes 16,24]
+       [--swift-box 100]
 Needs LAMMPS' Python module, lmp and the plugin (source build/env.sh first), h5py, and SWIFT
 built without MPI (e.g. ./configure --with-hydro=sphenix --with-kernel=cubic-spline
 --disable-mpi). Everything runs under `nice`. Tables printed and written to OUTDIR/table.md.
@@ -124,7 +127,7 @@ def read_dump(path):
         lines = f.readlines()
     t = None
     for i, line in enumerate(lines):
-        if line.startswith("ITEM: TIME"):
+        if line.strip() == "ITEM: TIME":
             t = float(lines[i + 1])
         if line.startswith("ITEM: ATOMS"):
             cols = line.split()[2:]
@@ -447,7 +450,10 @@ def part_a(args, env):
                     continue
                 row["ts"].append(res.pop("t"))
                 row["tmins"].append(res.pop("tmin"))
-                row.update(res)
+                if row["ts"][-1] == min(row["ts"]):      # the parts of the fastest round
+                    row.update(res)
+                else:
+                    row.update({k: v for k, v in res.items() if k not in row})
         for kind, what, row in jobs:
             if row["ts"]:
                 row["t"], row["tmin"] = min(row["ts"]), min(row["tmins"])
@@ -455,15 +461,16 @@ def part_a(args, env):
             print(fmt_a(row), flush=True)
     return rows
 
-HEAD_A = ("| state | N | code | setting | softening | ms per evaluation (wall) | least | "
-          "parts, ms | "
+HEAD_A = ("| state | N | code | setting | softening | ms per evaluation (wall; best round) | "
+          "rounds | least | parts, ms | "
           "per-particle RMS | 99th pct | max | interactions per particle |\n"
-          "|---|---|---|---|---|---|---|---|---|---|---|---|")
+          "|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 
 
 def fmt_a(r):
     return (f"| {r['state']} | {r['n']} | {r['code']} | {r['setting']} | {r['soft']} | "
-            f"{1e3 * r['t']:.1f} | {1e3 * r['tmin']:.1f} | {r['gpart']} | {r['rms']:.2e} | "
+            f"{1e3 * r['t']:.1f} | {' '.join(f'{1e3 * t:.0f}' for t in r.get('ts', []))} | "
+            f"{1e3 * r['tmin']:.1f} | {r['gpart']} | {r['rms']:.2e} | "
             f"{r['p99']:.2e} | {r['max']:.2e} | {r['inter']} |")
 
 
@@ -482,8 +489,12 @@ def swift_evrard_ic(path, n, seed=4711):
                    u=np.full(n, 0.05))
 
 
-def swift_evrard_yml(src, dst, ic, eps, tend):
+def swift_evrard_yml(src, dst, ic, eps, tend, cfl=None, dt_max=None):
     text = open(src).read()
+    if cfl is not None:
+        text = re.sub(r"(CFL_condition:\s*)\S+", rf"\g<1>{cfl!r}", text)
+    if dt_max is not None:
+        text = re.sub(r"(dt_max:\s*)\S+", rf"\g<1>{dt_max!r}", text)
     text = re.sub(r"(time_end:\s*)\S+", rf"\g<1>{tend!r}", text)
     text = re.sub(r"(file_name:\s*)\S+", rf"\g<1>{ic}", text)
     text = re.sub(r"(max_physical_baryon_softening:\s*)\S+", rf"\g<1>{eps!r}", text)
@@ -532,13 +543,19 @@ def part_b(args, env):
              "t": float(m.group(1)), "eerr": float(m.group(3))}
         rows.append(r)
         print(fmt_b(r), flush=True)
-        for eps, label in [(0.001, "published 0.001"), (hmean, "mean h of SPH-ASTRO's ICs")]:
-            wd = os.path.join(d, f"swift_eps{eps:.5g}")
+        variants = [(0.001, "published 0.001", None, None),
+                    (hmean, "mean h of SPH-ASTRO's ICs", None, None)]
+        if args.matched:      # SPH-ASTRO's Courant number 0.3 and top step 0.05
+            variants.append((hmean, "mean h of SPH-ASTRO's ICs", 0.3, 0.05))
+        for eps, label, cfl, dt_max in variants:
+            wd = os.path.join(d, f"swift_eps{eps:.5g}" + (f"_cfl{cfl:g}" if cfl else ""))
             shutil.rmtree(wd, ignore_errors=True)
             os.makedirs(wd)
             swift_evrard_ic(os.path.join(wd, "evrard.hdf5"), n)
-            swift_evrard_yml(src, os.path.join(wd, "evrard.yml"),
-                             os.path.join(wd, "evrard.hdf5"), eps, args.tend)
+            yml = swift_evrard_yml(src, os.path.join(wd, "evrard.yml"),
+                                   os.path.join(wd, "evrard.hdf5"), eps, args.tend, cfl, dt_max)
+            cfl_used = re.search(r"CFL_condition:\s*(\S+)", yml).group(1)
+            dtmax_used = re.search(r"dt_max:\s*(\S+)", yml).group(1)
             wall = run([args.swift, "--hydro", "--self-gravity", "--limiter",
                         f"--threads={args.threads}", "evrard.yml"], wd,
                        os.path.join(wd, "stdout"))
@@ -546,7 +563,8 @@ def part_b(args, env):
             steps = swift_steps(text)
             t_end, eerr = swift_statistics_energy(os.path.join(wd, "statistics.txt"))
             done = re.search(r"^\[(\d+\.\d+)\] main: done", text, re.M)
-            r = {"n": n, "code": "SWIFT", "setting": f"EvrardCollapse_3D, CFL 0.1, dt_max 1e-3, "
+            r = {"n": n, "code": "SWIFT", "setting": f"EvrardCollapse_3D, CFL {cfl_used}, "
+                 f"dt_max {dtmax_used}{'' if cfl is None else ' (as SPH-ASTRO)'}, "
                  f"{args.threads} threads", "soft": f"eps {eps:.4g} ({label})", "wall": wall,
                  "loop": float(done.group(1)) if done else float("nan"),
                  "steps": steps[-1][0], "updates": sum(s[3] for s in steps), "t": t_end,
@@ -600,12 +618,15 @@ def main():
     p.add_argument("--np", type=int, default=2, help="MPI ranks of SPH-ASTRO")
     p.add_argument("--threads", type=int, default=2, help="threads of SWIFT")
     p.add_argument("--evals", type=int, default=10, help="part A: timed SPH-ASTRO evaluations")
-    p.add_argument("--repeats", type=int, default=2,
+    p.add_argument("--repeats", type=int, default=3,
                    help="part A: timing rounds (every setting once per round; least mean kept)")
     p.add_argument("--swift-box", type=float, default=100.0,
                    help="part A: side of SWIFT's box around the sphere (its example's 100)")
     p.add_argument("--sizes", default="16,24", help="part B: in.evrard -var n values")
     p.add_argument("--tend", type=float, default=0.8, help="part B: end time")
+    p.add_argument("--matched", action="store_true",
+                   help="part B: also SWIFT with CFL 0.3 and dt_max 0.05, SPH-ASTRO's Courant "
+                   "number and top step (softening: the mean h)")
     args = p.parse_args()
     if not args.swift and not args.swift_checks:
         p.error("give --swift (and/or --swift-checks for part A's errors)")
