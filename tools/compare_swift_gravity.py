@@ -64,7 +64,8 @@ Usage: python3 tools/compare_swift_gravity.py --swift /path/to/swift
        [--part A|B|all] [--states ic,t0.6] [--relative 0.002] [--epsilon-fmm 0.001]
        [--repeats 3] [--matched] [--np 2] [--threads 2] [--evals 10] [--sizes 16,24]
        [--swift-box 100]
-Needs LAMMPS' Python module, lmp and the plugin (source build/env.sh first), h5py, and SWIFT
+Needs LAMMPS' Python module, lmp and the plugin (source build/env.sh first; the plugin's
+directory, LAMMPS_PLUGIN_PATH, must not be rebuilt meanwhile: a warning says so), h5py, and SWIFT
 built without MPI (e.g. ./configure --with-hydro=sphenix --with-kernel=cubic-spline
 --disable-mpi). Everything runs under `nice`. Tables printed and written to OUTDIR/table.md.
 """
@@ -603,6 +604,16 @@ def fmt_b(r):
 
 # ------------------------------------------------------------------ main
 
+def plugin_stamp(env):
+    """modification times of the plugins LAMMPS will load (a rebuild during the run shows)"""
+    out = []
+    for d in env.get("LAMMPS_PLUGIN_PATH", "").split(":"):
+        so = os.path.join(d, "sphastroplugin.so")
+        if d and os.path.exists(so):
+            out.append((so, os.path.getmtime(so)))
+    return out
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--swift", help="SWIFT executable (timing build)")
@@ -642,6 +653,7 @@ def main():
     args.outdir = os.path.abspath(args.outdir)
     os.makedirs(args.outdir, exist_ok=True)
     env = lammps_environment()
+    plugin_at_start = plugin_stamp(env)
     out = [f"load average at the start: {os.getloadavg()[0]:.2f}"]
     if args.part in ("A", "all"):
         rows = part_a(args, env)
@@ -656,6 +668,9 @@ def main():
         out += ["", f"Part B: Evrard collapse to t = {args.tend}", "", HEAD_B]
         out += [fmt_b(r) for r in rows]
     out.append(f"load average at the end: {os.getloadavg()[0]:.2f}")
+    if plugin_stamp(env) != plugin_at_start:
+        out.append("WARNING: the plugin on LAMMPS_PLUGIN_PATH changed during the run (rebuilt?): "
+                   "the SPH-ASTRO rows may come from different builds")
     text = "\n".join(out) + "\n"
     with open(os.path.join(args.outdir, "table.md"), "w") as f:
         f.write(text)
