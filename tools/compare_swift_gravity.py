@@ -41,7 +41,8 @@ Part A: one full gravity evaluation of the Evrard sphere (Evrard 1988; M = R = G
   gravity tasks summed over threads (scheduler_report_task_times). Error (--swift-checks: SWIFT
   configured with --enable-gravity-force-checks=1, which sums every particle's acceleration
   exactly with its own softening and writes gravity_checks_*.dat): step 1, in the same
-  per-particle form, with its mean P2P, M2P and M2L interactions per particle.
+  per-particle form, with its counters per particle (the source particles reached directly,
+  P2P, and through accepted multipoles, M2P and M2L; not a count of operations).
   Timing in --repeats rounds, every setting once per round; the least mean per evaluation is kept
   (other jobs on a shared machine slow single runs).
 
