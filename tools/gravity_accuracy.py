@@ -20,7 +20,7 @@ re-neighbourings; CPU time, not wall time, so that other jobs on the machine dis
 error against time per scene).
 Usage: python3 tools/gravity_accuracy.py [--scenes cloud,evrard,plummer] [--n 4000]
        [--evrard-n 24] [--plummer-n 20000] [--thetas 0.3,0.4,0.5,0.6,0.7]
-       [--alphas 0.0005,0.001,0.002,0.004]
+       [--alphas 0.0005,0.001,0.002,0.004] [--tree 'relative 1e-5 leaf 8 group 64' ...]
        [--steps 5] [--outdir DIR]
 Needs LAMMPS' Python module and the plugin on LAMMPS_PLUGIN_PATH: source build/env.sh first.
 """
@@ -152,6 +152,7 @@ def settings(scene, args, periodic):
             for t in args.thetas]
     out += [(f"tree relative {a:g}", f"tree/sph/astro/gravity relative {a:g}")
             for a in args.alphas]
+    out += [(f"tree {t}", f"tree/sph/astro/gravity {t}") for t in args.tree]
     if scene == "cloud":
         out += [(f"msm {a:g}", f"msm/sph/astro/gravity {a:g}") for a in args.accuracies]
     return out
@@ -166,6 +167,9 @@ def main():
     p.add_argument("--thetas", default="0.3,0.4,0.5,0.6,0.7")
     p.add_argument("--alphas", default="0.0005,0.001,0.002,0.004")
     p.add_argument("--accuracies", default="1e-3,1e-4,1e-5")
+    p.add_argument("--tree", action="append", default=[], metavar="ARGS",
+                   help="further tree settings, e.g. 'relative 1e-5 leaf 8 group 64' "
+                        "(repeatable)")
     p.add_argument("--steps", type=int, default=5)
     p.add_argument("--outdir", default=os.path.join(ROOT, "build", "output", "gravity_accuracy"))
     args = p.parse_args()
@@ -206,6 +210,7 @@ def main():
     fig, axes = plt.subplots(1, len(curves), figsize=(5 * len(curves), 4), squeeze=False)
     for ax, (name, rows) in zip(axes[0], curves.items()):
         for family in ("direct", "tree geometric", "tree relative", "msm", "pppm"):
+            # (the --tree settings are drawn as points of the relative family's colour)
             sel = [r for r in rows if r[2].startswith(family)]
             if sel:
                 ax.loglog([max(r[8], 1e-3) for r in sel], [max(r[3], 1e-16) for r in sel], "o-",

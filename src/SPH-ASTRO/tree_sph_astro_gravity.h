@@ -65,7 +65,7 @@ class TreeSPHAstroGravity :
  protected:
   SPHAstro::OpeningCriterion crit_;
   int leaf_size_ = SPHAstro::GravityTree::DEFAULT_LEAF_SIZE;
-  int group_size_ = 32;
+  int group_size_ = 64;
   class PairSPHAstroGravity *pair_ = nullptr;
   SPHAstro::ActiveSet active_;
   // periodic boxes (TreePM): PPPM for the long range, the tree over owned and ghost atoms for
