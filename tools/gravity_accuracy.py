@@ -146,7 +146,7 @@ def settings(scene, args, periodic):
     out = []
     if periodic:
         return [(f"pppm {a:g}", f"pppm/sph/astro/gravity {a:g}") for a in args.accuracies]
-    if scene != "cloud" or args.n <= 20000:
+    if scene != "cloud":    # (the cloud's pair cutoff, 3, is that of MSM's split)
         out.append(("direct", None))
     out += [(f"tree geometric {t:g}", f"tree/sph/astro/gravity geometric {t:g}")
             for t in args.thetas]
