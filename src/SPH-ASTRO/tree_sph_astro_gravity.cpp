@@ -439,6 +439,19 @@ void TreeSPHAstroGravity::exchange()
   std::vector<double> recv(total);
   MPI_Alltoallv(send.data(), sendcounts.data(), senddispls.data(), MPI_DOUBLE, recv.data(),
                 recvcounts.data(), recvdispls.data(), MPI_DOUBLE, world);
+  std::vector<double>().swap(send);
+  // (the items' arrays at their size: their memory is the peak of a full evaluation)
+  int items = 0, multipoles = 0;
+  for (const double *p = recv.data(), *end = p + total; p < end; items++) {
+    multipoles += p[0] != 0.0;
+    p += p[0] == 0.0 ? 7 : 12;
+  }
+  for (auto *v : {&import_items_.x, &import_items_.y, &import_items_.z, &import_items_.m,
+                  &import_items_.h, &import_items_.zo})
+    v->reserve(items);
+  import_items_.mp.reserve(items);
+  import_items_.tie.reserve(items);
+  import_items_.moments.reserve(7 * static_cast<size_t>(multipoles));
   for (int r = 0; r < nprocs; r++) {
     int64_t seq = static_cast<int64_t>(r) << 40;
     const double *p = recv.data() + recvdispls[r], *end = p + recvcounts[r];
@@ -452,6 +465,7 @@ void TreeSPHAstroGravity::exchange()
       }
     }
   }
+  std::vector<double>().swap(recv);
   last_.imported = import_items_.size();
   imported_.build(import_items_);
 }
