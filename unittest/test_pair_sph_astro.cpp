@@ -10,6 +10,7 @@
 
 #include "styles_fixture.h"
 
+#include "comm.h"
 #include "compute.h"
 #include "fix.h"
 #include "force.h"
@@ -53,10 +54,6 @@ INSTANTIATE_TEST_SUITE_P(PairSPHAstro, Conservation,
                          ::testing::Values("",
                                            "fix hvar all sph/astro/h iterate hfact 1.2 margin 2.0",
                                            "fix hvar all sph/astro/h dhdt margin 2.0"));
-
-// total energy error after a fixed time with fixed dt; second order: halving dt
-// cuts it by 4
-// relative total energy error of an expanding ball after t = 0.4 with fixed dt; second order:
 
 static double central_mean(const char *name, const std::vector<std::string> &velocity, bool gradh)
 {
@@ -477,3 +474,84 @@ TEST(PairSPHAstro, IsolatedParticleStaysFinite)
   EXPECT_DOUBLE_EQ(u[last], 1.0);
   EXPECT_DOUBLE_EQ(vx[last], 0.0);
 }
+
+// ---- the virial pair sph/astro tallies
+
+// A ball of gas across the corner of a periodic box: its pairs meet through ghost images (the
+// newton on and off paths), yet the ball is an isolated system, so with unwrapped positions
+// the virial of its central pair forces is sum_i x_i (x) f_i (Allen & Tildesley 1987, eq.
+// 2.60). GetParam(): newton setting, pair style arguments, fix sph/astro/h line or "".
+class Virial :
+    public ::testing::TestWithParam<std::tuple<std::string, std::string, std::string>> {};
+
+TEST_P(Virial, TallyIsTheSumOfPositionsTimesForces)
+{
+  const auto &[newton, pair, hfix] = GetParam();
+  auto lmp = open_lammps();
+  const double h = 1.2 * std::cbrt(0.25);
+  commands(lmp,
+           {"units lj",
+            "atom_style atomic",
+            "atom_modify map array sort 0 0.0",
+            "newton " + newton,
+            "boundary p p p",
+            "lattice fcc 4.0",
+            "region box block 0 8 0 8 0 8",
+            "create_box 1 box",
+            "region ball sphere 4 4 4 2.5",
+            "create_atoms 1 region ball",
+            "displace_atoms all random 0.04 0.04 0.04 4711 units box",
+            "displace_atoms all move 4 4 4",
+            "mass 1 0.25",
+            "velocity all create 0.3 8675309 dist gaussian",
+            "pair_style " + pair,
+            "pair_coeff * *",
+            "fix gas all sph/astro",
+            "set group all d_h " + num(h),
+            "variable urand atom 1.0+0.2*random(-1,1,991)",
+            "set group all d_u v_urand",
+            "neighbor " + num(0.3 * h) + " bin"});
+  if (!hfix.empty()) commands(lmp, {hfix});
+  commands(lmp,
+           {"compute wpair all pressure NULL pair", "compute watom all stress/atom NULL pair",
+            "compute wsum all reduce sum c_watom[1] c_watom[2] c_watom[3] c_watom[4] "
+            "c_watom[5] c_watom[6]",
+            "thermo_style custom step c_wpair[1] c_wsum[1]", "run 0"});
+  ASSERT_EQ(lmp->comm->nprocs, 1);
+  ASSERT_GT(lmp->atom->nghost, 0);    // the pairs across the corner go through ghosts
+
+  // sum_i x_i (x) f_i in LAMMPS' order xx, yy, zz, xy, xz, yz, and its scale
+  const int ab[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}};
+  double w[6] = {0, 0, 0, 0, 0, 0}, scale = 0.0;
+  for (int i = 0; i < lmp->atom->nlocal; i++) {
+    double x[3];
+    lmp->domain->unmap(lmp->atom->x[i], lmp->atom->image[i], x);
+    for (int k = 0; k < 6; k++) {
+      w[k] += x[ab[k][0]] * lmp->atom->f[i][ab[k][1]];
+      scale += std::fabs(x[ab[k][0]] * lmp->atom->f[i][ab[k][1]]);
+    }
+  }
+  ASSERT_GT(scale, 0.0);
+  // the ball pushes outwards: a positive trace
+  EXPECT_GT(w[0] + w[1] + w[2], 0.1 * scale / 6);
+
+  // compute pressure ... pair gives W/V, compute stress/atom -W per atom
+  const double volume = lmp->domain->xprd * lmp->domain->yprd * lmp->domain->zprd;
+  const auto global = global_vector(lmp, "wpair", 6);
+  const auto peratom = global_vector(lmp, "wsum", 6);
+  ASSERT_EQ(global.size(), 6u);
+  ASSERT_EQ(peratom.size(), 6u);
+  for (int k = 0; k < 6; k++) {
+    EXPECT_NEAR(global[k] * volume, w[k], 1e-12 * scale) << "component " << k;
+    EXPECT_NEAR(-peratom[k], w[k], 1e-12 * scale) << "component " << k;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    PairSPHAstro, Virial,
+    ::testing::Combine(
+        ::testing::Values("on", "off"),
+        ::testing::Values(std::string(PAIR),
+                          "sph/astro kernel wendland/c4 eos ideal $(5.0/3.0) viscosity signal "
+                          "1.0 reconstruct yes conductivity 1.0"),
+        ::testing::Values("", "fix hvar all sph/astro/h iterate hfact 1.2 margin 2.0")));

@@ -428,3 +428,41 @@ TEST_F(Setting, HeldAtTheBoxBoundIsSaid)
       << text;
   std::remove(log.c_str());
 }
+
+// a viscosity far beyond its range (alpha = beta = 1e300) drives the Courant step to 3e-303:
+// the sentinel names the run's first timestep, the particle time scale it falls below and what
+// limits it, at the first step; the usual settings pass
+TEST_F(Setting, TimestepFarBelowTheParticlesTimeScalesIsNamedAtTheFirstStep)
+{
+  commands(lmp,
+           {"pair_style sph/astro kernel m4 eos ideal $(5.0/3.0) viscosity classic 1e300 "
+            "1e300",
+            "pair_coeff * *", "fix gas all sph/astro sentinel stop", "set group all d_h 0.9",
+            "set group all d_u 1.0"});
+  const std::string message = error_of(lmp, "run 1");
+  EXPECT_NE(message.find("the run's first timestep"), std::string::npos) << message;
+  EXPECT_NE(message.find("times the shortest time in which a particle crosses its h"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("limited by atom"), std::string::npos) << message;
+  commands(lmp, {"pair_style " + std::string(PAIR), "pair_coeff * *"});
+  EXPECT_EQ(error_of(lmp, "run 1"), "");
+}
+
+// 200 particles within 1e-9 of a point: the h iteration of nearly all of them fails in the
+// setup's density pass; the sentinel says so at step 0 (it looked only at the steps' passes,
+// which converge once h has grown, so only fix sph/astro/h's counter showed it)
+TEST(HIteration, FailuresOfTheSetupPassAreReportedAtStepZero)
+{
+  auto lmp = open_lammps();
+  commands(lmp,
+           {"units lj", "atom_style atomic", "atom_modify map array", "boundary f f f",
+            "region box block -1 1 -1 1 -1 1", "create_box 1 box",
+            "region dot sphere 0 0 0 1e-9 units box", "create_atoms 1 random 200 4711 dot",
+            "mass 1 0.005", "pair_style " + std::string(PAIR), "pair_coeff * *",
+            "fix gas all sph/astro sentinel stop", "fix hvar all sph/astro/h iterate",
+            "set group all d_h 0.1", "set group all d_u 1.0", "neighbor 0.05 bin"});
+  const std::string message = error_of(lmp, "run 3");
+  EXPECT_NE(message.find("at step 0 the h iteration of"), std::string::npos) << message;
+  EXPECT_NE(message.find("particles did not converge (first: atom"), std::string::npos) << message;
+}

@@ -379,6 +379,7 @@ void FixSPHAstro::setup(int /*vflag*/)
   sentinel_->check_velocities(groupbit, "at the start of the run");
   sentinel_->check_plane("at the start of the run");
   sentinel_->check_speed_outlier(pair_, igroup);
+  sentinel_->check_particles(pair_, hfix_, groupbit);    // (the setup's density pass)
   if (tend_ > 0.0 && current_time() >= tend_ * (1.0 - 1e-12)) {
     if (comm->me == 0)
       error->warning(FLERR, "fix sph/astro: time {} already at tend {}: the run stops at once",

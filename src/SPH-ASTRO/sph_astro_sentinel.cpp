@@ -216,6 +216,55 @@ void StabilitySentinel::report(const std::string &message)
 {
   if (action_ == Action::STOP) error->all(FLERR, message + " (sentinel stop)");
   if (comm->me == 0) error->warning(FLERR, message);
+  utils::flush_buffers(lmp);    // (on the screen at the step it concerns, not at a later flush)
+}
+
+void StabilitySentinel::check_first_step(PairSPHAstro *pair, int groupbit,
+                                         const std::function<std::string()> &cause)
+{
+  if (!(collapse_ > 0.0)) return;
+  int flag, cols;
+  const int index = atom->find_custom("h", flag, cols);
+  if (index < 0) return;
+  const double *h = atom->dvector[index];
+  const double *cs = pair->fields().soundspeed;
+  double **v = atom->v, **f = atom->f;
+  const double *rmass = atom->rmass, *mass = atom->mass;
+  const int *mask = atom->mask, *type = atom->type;
+  // each particle's own time scale: h crossed at its signal speed |v| + c_s, or from rest
+  // under its acceleration, sqrt(h / |a|); the shortest over the group (none for a cold gas at
+  // rest without forces)
+  double shortest = INFINITY;
+  tagint id = MAXTAGINT;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit) || !(h[i] > 0.0)) continue;
+    const double speed = sqrt(v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
+    const double m = rmass ? rmass[i] : mass[type[i]];
+    const double accel = sqrt(f[i][0] * f[i][0] + f[i][1] * f[i][1] + f[i][2] * f[i][2]) / m;
+    double own = INFINITY;
+    if (speed + cs[i] > 0.0) own = h[i] / (speed + cs[i]);
+    if (accel > 0.0) own = MIN(own, sqrt(h[i] / accel));
+    if (own < shortest || (own == shortest && atom->tag[i] < id)) {
+      shortest = own;
+      id = atom->tag[i];
+    }
+  }
+  struct {
+    double value;
+    int rank;
+  } mine = {shortest, comm->me}, least;
+  MPI_Allreduce(&mine, &least, 1, MPI_DOUBLE_INT, MPI_MINLOC, world);
+  if (!std::isfinite(least.value) || !(update->dt < collapse_ * least.value)) return;
+  tagint id_all = id;
+  MPI_Bcast(&id_all, 1, MPI_LMP_TAGINT, least.rank, world);
+  dt_reported_ = true;
+  report(fmt::format(
+      "fix sph/astro: the run's first timestep {:.6g} at step {} is {:.3g} times the shortest "
+      "time in which a particle crosses its h at its signal speed |v| + c_s or under its "
+      "acceleration ({:.6g}, atom {}): the timestep criteria ({}) are driven by a setting, such "
+      "as viscosity alpha and beta or conductivity far beyond their usual range (0.1-2), or "
+      "an extreme initial state; keyword collapse sets the share",
+      update->dt, update->ntimestep, update->dt / least.value, least.value, id_all, cause()));
 }
 
 void StabilitySentinel::check_fixed_step(double dt, double stable,
@@ -235,7 +284,10 @@ void StabilitySentinel::check(PairSPHAstro *pair, FixSPHAstroH *hfix, int groupb
   if (action_ == Action::OFF) return;
   // (the run's first timestep: that of its first step, all setup forces in)
   const bool first_step = dt_run_start_ == 0.0;
-  if (first_step) dt_run_start_ = update->dt;
+  if (first_step) {
+    dt_run_start_ = update->dt;
+    if (adaptive) check_first_step(pair, groupbit, cause);
+  }
   if (!dt_reported_ && adaptive && collapse_ > 0.0 && update->dt < collapse_ * dt_run_start_) {
     dt_reported_ = true;
     const std::string why = cause();
@@ -246,6 +298,12 @@ void StabilitySentinel::check(PairSPHAstro *pair, FixSPHAstroH *hfix, int groupb
         update->dt, update->ntimestep, collapse_, dt_run_start_, why));
   }
   if (first_step || hfix) check_support(pair, groupbit);    // (fixed h: h does not change)
+  check_particles(pair, hfix, groupbit);
+}
+
+void StabilitySentinel::check_particles(PairSPHAstro *pair, FixSPHAstroH *hfix, int groupbit)
+{
+  if (action_ == Action::OFF) return;
   const bool check_h = !h_reported_ && hfix;
   // particles alone in their kernel support feel no pressure (the counts of the latest
   // density pass; density continuity has none without a pass of its own)
@@ -285,7 +343,8 @@ void StabilitySentinel::check(PairSPHAstro *pair, FixSPHAstroH *hfix, int groupb
           "fix sph/astro: at step {} the h iteration of {:.0f} of {:.0f} particles did not "
           "converge (first: {}) and {:.0f} were held at the h cap (first: {}); their h does not "
           "follow rho, so their forces are not the grad-h forces: raise fix sph/astro/h "
-          "maxiter, margin or hmax, or start from a better h; keyword hshare sets the share",
+          "maxiter, margin or hmax, start from a better h, or separate particles that lie "
+          "(nearly) on one point; keyword hshare sets the share",
           update->ntimestep, all[0], all[2], name(first_all[0]), all[1], name(first_all[1])));
     else
       report(fmt::format(

@@ -49,6 +49,9 @@ class StabilitySentinel : protected LAMMPS_NS::Pointers {
   // it (called only for a report); hfix: variable h (null: fixed h)
   void check(LAMMPS_NS::PairSPHAstro *pair, LAMMPS_NS::FixSPHAstroH *hfix, int groupbit,
              bool adaptive, const std::function<std::string()> &cause);
+  // the latest density pass (the setup's, or a step's): more than hshare of the particles
+  // failing or capped in the h iteration, or without a neighbour inside their support
+  void check_particles(LAMMPS_NS::PairSPHAstro *pair, LAMMPS_NS::FixSPHAstroH *hfix, int groupbit);
   // at init: minimize, another integrator or fix dt/reset on the particles of self (fix
   // sph/astro), an empty group
   void check_setting(LAMMPS_NS::Fix *self, bool adaptive);
@@ -66,6 +69,10 @@ class StabilitySentinel : protected LAMMPS_NS::Pointers {
   void report(const std::string &message);
   // a kernel support longer than a periodic box length (the particle meets its own images)
   void check_support(LAMMPS_NS::PairSPHAstro *pair, int groupbit);
+  // the run's first timestep, adaptive: below collapse x the shortest time scale of a
+  // particle's own (h over |v| + c_s, or sqrt(h / |a|)), a setting drives the criteria
+  void check_first_step(LAMMPS_NS::PairSPHAstro *pair, int groupbit,
+                        const std::function<std::string()> &cause);
 };
 
 }    // namespace SPHAstro
