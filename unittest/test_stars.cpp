@@ -240,8 +240,8 @@ TEST(Stars, SofteningPerTypeEntersTheForce)
               expected(0.4, 0.2), 1e-12 * newton);
   EXPECT_NEAR(force("", "h 0.01 softening 2 0.4 softening 3 0.2", true), expected(0.4, 0.2),
               1e-13 * newton);
-  // the short range of MSM (cutoff 1.0 covers the supports 2 h; neighbour-list pairs): the softened pair plus MSM's
-  // long range, within MSM's accuracy
+  // the short range of MSM (neighbour-list pairs; cutoff 1.0 covers the supports 2 h): the
+  // softened pair plus MSM's long range, within MSM's accuracy
   const double f_msm =
       force("msm/sph/astro/gravity 1e-6", "h 0.01 softening 2 0.4 softening 3 0.2", false);
   printf("MSM: relative force difference from the closed form %.3e\n",
