@@ -10,8 +10,8 @@ relative difference of 1e-9 of each field's scale.
 With --repeat the last rank count runs a second time and must give the same numbers bit for
 bit (a solver whose results depend on the decomposition, as the gravity tree's do within its
 force error, still repeats itself exactly).
-Usage: mpi_equivalence.py WORKDIR [--ranks 1,2,3,4] [--tol 1e-9] [--scene sod] [--repeat]
-       [lmp -var arguments ...]
+Usage: mpi_equivalence.py WORKDIR [--ranks 1,2,3,4] [--tol 1e-9] [--scene sod | --input FILE]
+       [--repeat] [lmp -var arguments ...]
 """
 import argparse
 import os
@@ -27,8 +27,9 @@ ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), 
 
 def run(workdir, np_ranks, extra, scene="sod", tag=""):
     out = os.path.join(workdir, f"dump.np{np_ranks}{tag}")
-    cmd = ["mpirun", "-np", str(np_ranks), "lmp", "-in",
-           os.path.join(ROOT, "examples", scene, "in." + scene), "-log",
+    # a scene of examples/ or an input file (a path)
+    script = scene if os.sep in scene else os.path.join(ROOT, "examples", scene, "in." + scene)
+    cmd = ["mpirun", "-np", str(np_ranks), "lmp", "-in", script, "-log",
            os.path.join(workdir, f"log.np{np_ranks}{tag}"), "-screen", "none",
            "-var", "out", out] + extra
     subprocess.run(cmd, check=True, cwd=workdir)
@@ -44,12 +45,16 @@ def main():
     parser.add_argument("--tol", type=float, default=1e-9)
     parser.add_argument("--scene", default="sod", help="examples/SCENE/in.SCENE (its dump has "
                         "x y z vx vy vz rho pressure u)")
+    parser.add_argument("--input", help="an input file instead of a scene (its dump has the same "
+                        "columns)")
     parser.add_argument("--repeat", action="store_true",
                         help="the last rank count again: bit for bit the same")
     args, extra = parser.parse_known_args()
     if not extra:
         extra = ["-var", "nx", "32", "-var", "ny", "4", "-var", "tend", "0.05"]
     os.makedirs(args.workdir, exist_ok=True)
+    if args.input:
+        args.scene = os.path.abspath(args.input)
     ranks = [int(r) for r in args.ranks.split(",")]
     ref_frame, ref = run(args.workdir, ranks[0], extra, args.scene)
     fields = ["x", "y", "z", "vx", "vy", "vz", "rho", "pressure", "u"]

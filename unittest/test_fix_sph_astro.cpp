@@ -513,6 +513,14 @@ TEST_F(BadInput, PairStyleArguments)
   expect_error("pair_style sph/astro eos isothermal -1", "sound speed -1 must be > 0");
   expect_error("pair_style sph/astro eos polytropic 1.0",
                "Illegal pair_style sph/astro eos polytropic");
+  expect_error("pair_style sph/astro eos barotropic 0.2 1e-3",
+               "Illegal pair_style sph/astro eos barotropic");
+  expect_error("pair_style sph/astro eos barotropic 0 1e-3 1.4",
+               "eos barotropic: sound speed 0 must be finite and > 0");
+  expect_error("pair_style sph/astro eos barotropic 0.2 -1 1.4",
+               "eos barotropic: critical density -1 must be finite and > 0");
+  expect_error("pair_style sph/astro eos barotropic 0.2 1e-3 1.0",
+               "eos barotropic: gamma = 1.0 must be finite and > 1");
   expect_error("pair_style sph/astro viscosity classic -1 2", "must be >= 0");
   expect_error("pair_style sph/astro viscosity monaghan", "unknown viscosity 'monaghan'");
   expect_error("pair_style sph/astro viscosity signal 0", "alpha = 0 must be > 0");

@@ -412,7 +412,8 @@ INSTANTIATE_TEST_SUITE_P(AllKernels, KernelInLAMMPS,
 
 TEST(PairSPHAstro, BarotropicEquationsOfState)
 {
-  for (const std::string eos : {"isothermal 0.7", "polytropic 0.3 2.0"}) {
+  // (barotropic: rho_crit 1.1 near the gas's rho ~ 1, where both terms count)
+  for (const std::string eos : {"isothermal 0.7", "polytropic 0.3 2.0", "barotropic 0.7 1.1 1.4"}) {
     auto lmp = open_lammps();
     gas(lmp, "box", 3, "sph/astro eos " + eos + " viscosity classic 1 2", "sph/astro", 1.0, 0.0);
     commands(lmp, {"compute sph all sph/astro/atom rho pressure cs u dudt", "run 20"});
@@ -424,6 +425,12 @@ TEST(PairSPHAstro, BarotropicEquationsOfState)
       if (eos[0] == 'i') {
         EXPECT_NEAR(array[i][1], 0.49 * rho, 1e-12);
         EXPECT_NEAR(array[i][2], 0.7, 1e-12);
+      } else if (eos[0] == 'b') {
+        // P = c_s^2 rho [1 + (rho/rho_crit)^(gamma-1)], c^2 = c_s^2 [1 + gamma (...)]
+        const double s = std::pow(rho / 1.1, 0.4);
+        EXPECT_NEAR(array[i][1], 0.49 * rho * (1.0 + s), 1e-12);
+        EXPECT_NEAR(array[i][2], 0.7 * std::sqrt(1.0 + 1.4 * s), 1e-12);
+        EXPECT_GT(s, 0.5);
       } else {
         EXPECT_NEAR(array[i][1], 0.3 * rho * rho, 1e-12);
         EXPECT_NEAR(array[i][2], std::sqrt(2.0 * 0.3 * rho), 1e-12);
@@ -434,6 +441,32 @@ TEST(PairSPHAstro, BarotropicEquationsOfState)
     auto u = per_atom(lmp, "u");
     for (const auto &[id, value] : u) EXPECT_GT(value, 0.0);
   }
+}
+
+// eos barotropic: c_s, rho_crit and gamma come back from a restart file (rho_crit in the slot
+// of the polytropic K)
+TEST(PairSPHAstro, BarotropicSettingsComeBackFromARestartFile)
+{
+  const std::string restart = "test_pair_sph_astro_barotropic.restart";
+  {
+    auto lmp = open_lammps();
+    gas(lmp, "box", 2, "sph/astro eos barotropic 0.7 0.9 1.4", "sph/astro", 1.0, 0.0);
+    commands(lmp, {"run 2", "write_restart " + restart});
+  }
+  auto lmp = open_lammps();
+  commands(lmp,
+           {"read_restart " + restart, "fix gas all sph/astro",
+            "compute sph all sph/astro/atom rho pressure cs", "run 0"});
+  auto *array = static_cast<double **>(
+      lammps_extract_compute(lmp.get(), "sph", LMP_STYLE_ATOM, LMP_TYPE_ARRAY));
+  ASSERT_NE(array, nullptr);
+  ASSERT_GT(lmp->atom->nlocal, 0);
+  for (int i = 0; i < lmp->atom->nlocal; i++) {
+    const double rho = array[i][0], s = std::pow(rho / 0.9, 0.4);
+    EXPECT_NEAR(array[i][1], 0.49 * rho * (1.0 + s), 1e-12);
+    EXPECT_NEAR(array[i][2], 0.7 * std::sqrt(1.0 + 1.4 * s), 1e-12);
+  }
+  std::remove(restart.c_str());
 }
 
 TEST(PairSPHAstro, NonPositiveMassIsReportedWithAtomID)

@@ -130,8 +130,10 @@ void ComputeSPHAstroGlobal::compute_vector()
     local[EKIN] += 0.5 * m * (vi[0] * vi[0] + vi[1] * vi[1] + vi[2] * vi[2]);
     local[ETHERM] += m * eos.energy_of(rho[i], ui);
     hash ^= SPHAstro::atom_state_hash(atom->tag[i], vi, ui);
-    hrange[0] = MIN(hrange[0], h[i]);
-    hrange[1] = MAX(hrange[1], h[i]);
+    if (pair_->gas_type(type[i])) {    // (point masses have no h)
+      hrange[0] = MIN(hrange[0], h[i]);
+      hrange[1] = MAX(hrange[1], h[i]);
+    }
   }
   MPI_Allreduce(local, vector, NVALUES, MPI_DOUBLE, MPI_SUM, world);
   hrange[0] = -hrange[0];

@@ -33,8 +33,8 @@
 #include "domain.h"
 #include "error.h"
 #include "force.h"
-#include "kspace.h"
 #include "group.h"
+#include "kspace.h"
 #include "memory.h"
 #include "modify.h"
 #include "neighbor.h"
@@ -341,7 +341,7 @@ void FixSPHAstro::init()
   pair_->schedule_initialisation(entropy_ && entropy_needs_init_,
                                  continuity_ && density_needs_init_);
   if (steps_) {
-    steps_->check_options(pair_->options(), entropy_, igroup);
+    steps_->check_options(pair_, entropy_, igroup);
     steps_->init(*state_, unchanged);
   }
   // the force styles below the integrator: which particles are active, when a grid solver

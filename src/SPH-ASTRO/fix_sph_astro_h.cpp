@@ -187,11 +187,13 @@ void FixSPHAstroH::init()
     error->all(FLERR, "fix sph/astro/h requires fix sph/astro (integrator and per-particle state)");
   if (modify->get_fix_by_style("^sph/astro/h$").size() > 1)
     error->all(FLERR, "fix sph/astro/h: only one instance is allowed");
-  if (group->count(igroup) != atom->natoms) {
+  // (the SPH gas: the types of pair sph/astro's pair_coeff; point masses may be outside)
+  if (pair_->gas_outside(groupbit) > 0) {
     if (mode_ == Mode::ITERATE)
       error->all(FLERR,
-                 "fix sph/astro/h iterate: group {} must hold all particles (the density "
-                 "iteration sets h for every SPH particle)",
+                 "fix sph/astro/h iterate: group {} must hold all SPH gas particles (the atom "
+                 "types of pair sph/astro's pair_coeff; the density iteration sets h for every "
+                 "one of them)",
                  group->names[igroup]);
     else if (comm->me == 0)
       error->warning(FLERR, "fix sph/astro/h dhdt: particles outside group {} keep their h",

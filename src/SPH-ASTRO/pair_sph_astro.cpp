@@ -60,7 +60,9 @@ PairSPHAstro::PairSPHAstro(LAMMPS *lmp) :
 {
   single_enable = 0;
   restartinfo = 1;
-  one_coeff = 1;
+  // pair_coeff I J with type ranges: the types I = J it sets are SPH gas; atoms of other types
+  // (point masses under pair sph/astro/gravity) are left out of every SPH sum
+  one_coeff = 0;
   manybody_flag = 1;    // forces depend on densities of both partners
   // rho, P, c_s, vest[3]; h, Omega, C (pressure-energy); alpha; u (cond.); Balsara f;
   // symmetric grad v, Delta
@@ -103,7 +105,7 @@ void PairSPHAstro::settings(int narg, char **arg)
   ensure_state(lmp, "pair_style sph/astro");
 }
 
-// pair_coeff * *  (all pairs of SPH particle types; no parameters)
+// pair_coeff I J  (type ranges; the types on the diagonal are SPH gas; no parameters)
 void PairSPHAstro::coeff(int narg, char **arg)
 {
   if (!allocated) allocate();
@@ -275,6 +277,15 @@ void PairSPHAstro::finish()
                  all[4] / atoms, all[5] / atoms);
 }
 
+bigint PairSPHAstro::gas_outside(int groupbit) const
+{
+  bigint mine = 0, all = 0;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (gas_type(atom->type[i]) && !(atom->mask[i] & groupbit)) mine++;
+  MPI_Allreduce(&mine, &all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  return all;
+}
+
 double PairSPHAstro::init_one(int i, int j)
 {
   if (setflag[i][j] == 0)
@@ -299,8 +310,8 @@ PassContext PairSPHAstro::context()
   PassContext ctx;
   ctx.kernel = opt_->kernel;
   ctx.dim = domain->dimension;
-  ctx.p = {atom->x,      atom->dvector[state_->h],   atom->type, atom->rmass, atom->mass,
-           atom->nlocal, atom->nlocal + atom->nghost};
+  ctx.p = {atom->x,      atom->dvector[state_->h],    atom->type, atom->rmass, atom->mass,
+           atom->nlocal, atom->nlocal + atom->nghost, sph_type_};
   ctx.half = {0, nullptr, nullptr, nullptr};
   ctx.newton = force->newton_pair != 0;
   ctx.f = fields_;

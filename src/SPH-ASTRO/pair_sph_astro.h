@@ -115,6 +115,12 @@ class PairSPHAstro : public Pair {
   // kernel radius x margin x the largest h + skin
   double h_cap() const { return h_cap_; }
   double h_cap_start() const { return h_cap_start_; }
+  // the SPH gas: the atom types of this style's pair_coeff I I (valid after init_style); the
+  // other types (point masses) are in no SPH sum
+  bool gas_type(int t) const { return sph_type_ && sph_type_[t]; }
+  // the number of gas atoms outside a group (collective): those fix sph/astro and fix
+  // sph/astro/h must hold all of
+  bigint gas_outside(int groupbit) const;
   // the run keeps the h cap of the run it continues (fix sph/astro/h then keeps its ghost cutoff)
   bool carried_cap_used() const { return carried_cap_used_; }
   static constexpr double CARRIED_CAP_MAX = 4.0;

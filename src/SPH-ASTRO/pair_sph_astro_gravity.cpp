@@ -129,6 +129,7 @@ void PairSPHAstroGravity::allocate()
 
 /* ----------------------------------------------------------------------
    pair_style sph/astro/gravity CUTOFF [G VALUE] [kernel NAME] [h VALUE] [zeta yes|no]
+                                [softening TYPES H] ...
 ------------------------------------------------------------------------- */
 
 void PairSPHAstroGravity::settings(int narg, char **arg)
@@ -139,6 +140,8 @@ void PairSPHAstroGravity::settings(int narg, char **arg)
     error->all(FLERR, "pair_style sph/astro/gravity: cutoff {} must be > 0", arg[0]);
   G_given_ = kernel_given_ = false;
   hfixed_ = 0.0;
+  soft_given_.clear();
+  soft_type_.clear();
   zeta_on_ = true;
   kernel_ = KernelType::CUBIC;
   int iarg = 1;
@@ -167,12 +170,28 @@ void PairSPHAstroGravity::settings(int narg, char **arg)
                    arg[iarg + 1]);
     } else if (key == "zeta") {
       zeta_on_ = utils::logical(FLERR, arg[iarg + 1], false, lmp) != 0;
+    } else if (key == "softening") {
+      // softening TYPES H: softening length H of the atoms of TYPES (a type or a range, e.g.
+      // 2*3), point masses that are not SPH gas; repeatable, a later one wins for a type (not
+      // "soft": pair_style hybrid would take it for LAMMPS' pair style soft)
+      if (iarg + 3 > narg)
+        utils::missing_cmd_args(FLERR, "pair_style sph/astro/gravity softening", error);
+      const double h = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+      if (!(h > 0.0) || !std::isfinite(h))
+        error->all(FLERR,
+                   "pair_style sph/astro/gravity: softening {} {}: the length must be finite "
+                   "and > 0",
+                   arg[iarg + 1], arg[iarg + 2]);
+      soft_given_.emplace_back(arg[iarg + 1], h);
+      iarg += 1;
     } else
       error->all(FLERR,
-                 "pair_style sph/astro/gravity: unknown keyword '{}'; allowed: G, kernel, h, zeta",
+                 "pair_style sph/astro/gravity: unknown keyword '{}'; allowed: G, kernel, h, "
+                 "zeta, softening",
                  key);
     iarg += 2;
   }
+  if (domain->box_exist) resolve_type_softening();
   resolve_gravity_constant();
   // q holds the masses for the kspace solvers; with it in place a non-gravity kspace style
   // reaches extract("cut_coul") below and gets a clear error
@@ -211,8 +230,32 @@ double *PairSPHAstroGravity::state_h() const
 
 double PairSPHAstroGravity::softening_length(int i) const
 {
+  const int t = atom->type[i];
+  if (t < static_cast<int>(soft_type_.size()) && soft_type_[t] > 0.0) return soft_type_[t];
   const double *h = state_h();
   return (h && h[i] > 0.0) ? h[i] : hfixed_;
+}
+
+// the type ranges of the keyword softening against the number of types (errors name the range and
+// the allowed types)
+void PairSPHAstroGravity::resolve_type_softening()
+{
+  const int ntypes = atom->ntypes;
+  std::vector<double> soft(ntypes + 1, 0.0);
+  for (const auto &[range, h] : soft_given_) {
+    int lo = 0, hi = -1;
+    if (utils::strmatch(range, "^\\d+$")) {
+      lo = hi = utils::inumeric(FLERR, range, false, lmp);
+      if (lo < 1 || lo > ntypes)
+        error->all(
+            FLERR,
+            "pair_style sph/astro/gravity: softening {} {}: atom type {} is out of range 1-{}",
+            range, h, lo, ntypes);
+    } else
+      utils::bounds(FLERR, range, 1, ntypes, lo, hi, error);
+    for (int t = lo; t <= hi; t++) soft[t] = h;
+  }
+  soft_type_ = soft;
 }
 
 void PairSPHAstroGravity::init_style()
@@ -245,6 +288,17 @@ void PairSPHAstroGravity::init_style()
                "pair_style sph/astro/gravity: no softened potential for kernel gaussian; "
                "allowed: m4, m6, wendland/c2, wendland/c4");
   have_state_ = find_state(lmp, *state_);
+  resolve_type_softening();
+  // the softening of the gas is its smoothing length: softening is for the types that are not gas
+  if (sph && sph->allocated)
+    for (int t = 1; t < static_cast<int>(soft_type_.size()); t++)
+      if (soft_type_[t] > 0.0 && sph->setflag[t][t])
+        error->all(
+            FLERR,
+            "pair_style sph/astro/gravity: softening for type {}: type {} is SPH gas of pair "
+            "sph/astro (its softening length is its smoothing length d_h); give softening only "
+            "for the types of point masses",
+            t, t);
 
   // every atom needs a mass and a softening length
   const double R = SPHAstro::kernel_radius(kernel_);
@@ -257,9 +311,10 @@ void PairSPHAstroGravity::init_style()
     const double h = softening_length(i);
     if (!(h > 0.0) || !std::isfinite(h))
       error->one(FLERR,
-                 "pair_style sph/astro/gravity: atom {} has no softening length (d_h = {}); "
-                 "set d_h or give a fixed one: pair_style sph/astro/gravity CUTOFF h VALUE",
-                 atom->tag[i], have_state_ ? state_h()[i] : 0.0);
+                 "pair_style sph/astro/gravity: atom {} (type {}) has no softening length (d_h "
+                 "= {}); set d_h, or give one for its type: pair_style sph/astro/gravity "
+                 "CUTOFF softening {} VALUE (or h VALUE for every atom without d_h)",
+                 atom->tag[i], atom->type[i], have_state_ ? state_h()[i] : 0.0, atom->type[i]);
     hmax = MAX(hmax, h);
   }
   double hmax_all;
@@ -429,6 +484,14 @@ template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int e
   const int newton_pair = force->newton_pair;
   const double *hstate = state_h();
   const double hfix = hfixed_;
+  // softening length of owned or ghost atom i (softening_length(), inlined)
+  const double *soft_type = soft_type_.data();
+  const int nsoft = static_cast<int>(soft_type_.size());
+  auto soft_of = [&](int i) {
+    const int t = type[i];
+    if (t < nsoft && soft_type[t] > 0.0) return soft_type[t];
+    return (hstate && hstate[i] > 0.0) ? hstate[i] : hfix;
+  };
   const SoftenedKernel &soft = softened_kernel(kernel_);
   const double R = soft.radius();
   const double cutsq = cut_global_ * cut_global_;
@@ -653,7 +716,7 @@ template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int e
     const bool i_inactive = some && !active_.active(i, mask);    // then active partners only
     const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
     const double mi = rmass ? rmass[i] : mass[type[i]];
-    const double hi = (hstate && hstate[i] > 0.0) ? hstate[i] : hfix;
+    const double hi = soft_of(i);
     if (R * hi > cut_global_)
       error->one(FLERR,
                  "pair_style sph/astro/gravity: atom {} has softening support {} x h = {} beyond "
@@ -670,7 +733,7 @@ template <bool CUBIC, int SPLIT, bool ZETA> void PairSPHAstroGravity::eval(int e
       const double rsq = delx * delx + dely * dely + delz * delz;
       if (rsq >= cutsq) continue;
       const double mj = rmass ? rmass[j] : mass[type[j]];
-      const double hj = (hstate && hstate[j] > 0.0) ? hstate[j] : hfix;
+      const double hj = soft_of(j);
       double e, D;
       pair_term(rsq, hi, hj, zoi, ZETA ? zeta_over_omega[j] : 0.0, e, D);
       const double mm = G * mi * mj;
@@ -796,6 +859,11 @@ void PairSPHAstroGravity::write_restart_settings(FILE *fp)
   fwrite(&hfixed_, sizeof(double), 1, fp);
   fwrite(&kernel, sizeof(int), 1, fp);
   fwrite(flags, sizeof(int), 3, fp);
+  // the softening length of each type (keyword softening; 0: none), types 1 to ntypes
+  const int n = atom->ntypes;
+  std::vector<double> soft(n + 1, 0.0);
+  for (int t = 1; t <= n && t < static_cast<int>(soft_type_.size()); t++) soft[t] = soft_type_[t];
+  fwrite(soft.data() + 1, sizeof(double), n, fp);
 }
 
 void PairSPHAstroGravity::read_restart_settings(FILE *fp)
@@ -815,5 +883,14 @@ void PairSPHAstroGravity::read_restart_settings(FILE *fp)
   G_given_ = ints[1] != 0;
   kernel_given_ = ints[2] != 0;
   zeta_on_ = ints[3] != 0;
+  const int n = atom->ntypes;
+  std::vector<double> soft(n + 1, 0.0);
+  if (comm->me == 0) utils::sfread(FLERR, soft.data() + 1, sizeof(double), n, fp, nullptr, error);
+  MPI_Bcast(soft.data(), n + 1, MPI_DOUBLE, 0, world);
+  // (kept as given per type, so that init resolves them again)
+  soft_given_.clear();
+  for (int t = 1; t <= n; t++)
+    if (soft[t] > 0.0) soft_given_.emplace_back(std::to_string(t), soft[t]);
+  soft_type_ = soft;
   warn_hybrid_restart(lmp, this, "sph/astro/gravity");
 }

@@ -21,6 +21,8 @@ PairStyle(sph/astro/gravity,PairSPHAstroGravity);
 #include "pair.h"
 #include "sph_astro_active_set.h"
 
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace SPHAstro {
@@ -55,7 +57,8 @@ class PairSPHAstroGravity : public Pair, public SPHAstro::ActiveSetClient {
   // for compute sph/astro/gravity/direct (valid after init_style)
   double gravity_constant() const { return G_; }
   SPHAstro::KernelType kernel() const { return kernel_; }
-  // softening length of local or ghost atom i: d_h of the SPH state if > 0, else the fixed h
+  // softening length of local or ghost atom i: that of its type (keyword softening) if given, else
+  // d_h of the SPH state if > 0, else the fixed h
   double softening_length(int i) const;
   double cutoff() const { return cut_global_; }
   // the cutoff LAMMPS' lists and ghost shell need: none with direct summation or the tree in an
@@ -84,6 +87,11 @@ class PairSPHAstroGravity : public Pair, public SPHAstro::ActiveSetClient {
   SPHAstro::KernelType kernel_;
   bool kernel_given_;
   double hfixed_;    // softening length of atoms without SPH state (0: none)
+  // keyword softening TYPES H (repeatable): the type ranges as given (resolved at init, when the
+  // number of types is known) and the softening length of each type (0: none; index 0 unused)
+  std::vector<std::pair<std::string, double>> soft_given_;
+  std::vector<double> soft_type_;
+  void resolve_type_softening();
 
   bool have_state_;
   SPHAstro::StateIndex *state_;

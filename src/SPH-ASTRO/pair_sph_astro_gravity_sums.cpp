@@ -42,7 +42,6 @@ void PairSPHAstroGravity::gather_all()
   const int *type = atom->type;
   const double *rmass = atom->rmass;
   const double *mass = atom->mass;
-  const double *h = state_h();
   std::vector<int> counts(nprocs), displs(nprocs);
   MPI_Allgather(&nlocal, 1, MPI_INT, counts.data(), 1, MPI_INT, world);
   int ntotal = 0;
@@ -58,7 +57,7 @@ void PairSPHAstroGravity::gather_all()
     mine[5 * i + 1] = x[i][1];
     mine[5 * i + 2] = x[i][2];
     mine[5 * i + 3] = rmass ? rmass[i] : mass[type[i]];
-    mine[5 * i + 4] = (h && h[i] > 0.0) ? h[i] : hfixed_;
+    mine[5 * i + 4] = softening_length(i);
   }
   all_.resize(5 * (size_t) ntotal);
   std::vector<int> counts5(nprocs), displs5(nprocs);
@@ -118,25 +117,30 @@ void PairSPHAstroGravity::compute_zeta()
                "bug: please report it)",
                update->ntimestep);
   const int nlocal = atom->nlocal;
-  // 0 for h held at the cap (it does not follow rho) and atoms without SPH smoothing length
+  // 0 for h held at the cap (it does not follow rho), atoms without SPH smoothing length and
+  // atoms that are not SPH gas of pair sph/astro (point masses: the sums are not theirs)
+  const int *type = atom->type;
   for (int i = 0; i < nlocal; i++) {
-    if (!(h[i] > 0.0) || h[i] >= sph_->h_cap() || !(rho[i] > 0.0))
+    if (!(h[i] > 0.0) || h[i] >= sph_->h_cap() || !(rho[i] > 0.0) ||
+        !sph_->setflag[type[i]][type[i]])
       zeta_[i] = 0.0;
     else
       zeta_[i] = -h[i] / (3.0 * rho[i]) * sums[i];
   }
+  // zeta_i / Omega_i; 0 where zeta_i is (point masses have no Omega)
+  auto over_omega = [&](int i) { return zeta_[i] != 0.0 ? zeta_[i] / omega[i] : 0.0; };
   // zeta/Omega of the partners (the tree sends the owned atoms' values itself)
   if (split_ == Split::TREE && !periodic_tree()) {
-    for (int i = 0; i < nlocal; i++) zeta_over_omega_[i] = zeta_[i] / omega[i];
+    for (int i = 0; i < nlocal; i++) zeta_over_omega_[i] = over_omega(i);
   } else if (split_ == Split::NONE) {
     for (int i = nlocal; i < nlocal + atom->nghost; i++) zeta_[i] = 0.0;
     std::vector<double> mine(nlocal);
-    for (int i = 0; i < nlocal; i++) mine[i] = zeta_[i] / omega[i];
+    for (int i = 0; i < nlocal; i++) mine[i] = over_omega(i);
     zo_all_.resize(ntotal_);
     MPI_Allgatherv(mine.data(), nlocal, MPI_DOUBLE, zo_all_.data(), gather_counts_.data(),
                    gather_displs_.data(), MPI_DOUBLE, world);
   } else {    // (the owners' values: pair sph/astro need not send Omega to every ghost)
-    for (int i = 0; i < nlocal; i++) zeta_over_omega_[i] = zeta_[i] / omega[i];
+    for (int i = 0; i < nlocal; i++) zeta_over_omega_[i] = over_omega(i);
     comm_stage_ = Stage::ZETA;
     comm->forward_comm(this, 2);
   }

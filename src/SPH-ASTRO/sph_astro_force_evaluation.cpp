@@ -110,6 +110,7 @@ void ForceEvaluation::keep_softening_sums(double *sums)
   const double *h = a_.h;
   double *kept = a_.steps.dphidh;
   for (int i = 0; i < nlocal; i++) {
+    if (!ctx_.p.gas(i)) continue;    // (a point mass has no h)
     if (active[i])
       kept[i] = sums[i] * h[i] * h[i];
     else
@@ -243,7 +244,7 @@ void ForceEvaluation::force()
   // drho_i/dt = sum_j m_j v_ij . grad_i W_ij (Monaghan 1992, eq. 2.12), integrated by fix
   // sph/astro
   if (o_.density_continuity)
-    for (int i = 0; i < nlocal; i++) a_.drhodt[i] = f.vdotgradw[i];
+    for (int i = 0; i < nlocal; i++) a_.drhodt[i] = ctx_.p.gas(i) ? f.vdotgradw[i] : 0.0;
 }
 
 // physical heat conduction: a pass of its own, only when kappa > 0
@@ -257,7 +258,7 @@ void ForceEvaluation::conduction()
   if (scheme_.entropy) {
     const double g1 = o_.eos.gamma - 1.0;
     for (int i = 0; i < nlocal; i++)
-      a_.entropy.dAdt[i] += g1 * std::pow(ctx_.rho[i], -g1) * f.conduct[i];
+      if (ctx_.p.gas(i)) a_.entropy.dAdt[i] += g1 * std::pow(ctx_.rho[i], -g1) * f.conduct[i];
   }
 }
 

@@ -229,11 +229,12 @@ void finish_force(const PassContext &ctx, const ForceSettings &s)
   const int nlocal = ctx.p.nlocal;
   const bool pe = s.pressure == PressureForm::PRESSURE_ENERGY;
   if (pe)
-    for (int i = 0; i < nlocal; i++) f.vdotgradw[i] /= f.pressure_factor[i];
+    for (int i = 0; i < nlocal; i++)
+      if (ctx.p.gas(i)) f.vdotgradw[i] /= f.pressure_factor[i];
   // (the pressure-energy grad-h terms are in C, not in Omega)
   const bool omega = s.gradh && !pe;
   for (int i = 0; i < nlocal; i++)
-    f.divv[i] = -f.vdotgradw[i] / ((omega ? f.omega[i] : 1.0) * ctx.rho[i]);
+    f.divv[i] = ctx.p.gas(i) ? -f.vdotgradw[i] / ((omega ? f.omega[i] : 1.0) * ctx.rho[i]) : 0.0;
 }
 
 }    // namespace SPHAstro

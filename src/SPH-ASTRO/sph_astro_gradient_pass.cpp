@@ -86,6 +86,7 @@ void finish_curl(const PassContext &ctx, bool omega, bool balsara)
 {
   const Fields &f = *ctx.f;
   for (int i = 0; i < ctx.p.nlocal; i++) {
+    if (!ctx.p.gas(i)) continue;
     const double norm = 1.0 / ((omega ? f.omega[i] : 1.0) * ctx.rho[i]);
     const double divv = -f.dcurl[i][0] * norm;
     const double curlv = norm *
@@ -101,6 +102,7 @@ void finish_velocity_gradient(const PassContext &ctx, double trigger, bool curl)
   const Fields &f = *ctx.f;
   const int dim = ctx.dim;
   for (int i = 0; i < ctx.p.nlocal; i++) {
+    if (!ctx.p.gas(i)) continue;
     const double *g = f.vgsum[i];
     if (dim == 2)    // 0 where M is singular
       velocity_gradient_symmetric<2>(g, f.vgrad[i]);

@@ -37,6 +37,11 @@ IndividualSteps::IndividualSteps(LAMMPS *lmp, Fix *owner, int levels, bool pair_
 {
 }
 
+int IndividualSteps::owner_groupbit() const
+{
+  return owner_->groupbit;
+}
+
 double IndividualSteps::tick() const
 {
   return dt_max_ / TimeBins::cycle();
@@ -79,8 +84,9 @@ void IndividualSteps::warn_keywords(LAMMPS *lmp, const std::map<std::string, std
                         "of its energy in 200 steps); use limiter 1 or 2 where gas is heated fast");
 }
 
-void IndividualSteps::check_options(const PairOptions &o, bool entropy, int igroup)
+void IndividualSteps::check_options(const PairSPHAstro *pair, bool entropy, int igroup)
 {
+  const PairOptions &o = pair->options();
   const char *what = entropy ? "fix sph/astro thermal entropy"
       : o.density_continuity ? "pair_style sph/astro density continuity"
       : o.reconstruction()   ? "pair_style sph/astro reconstruct"
@@ -91,10 +97,13 @@ void IndividualSteps::check_options(const PairOptions &o, bool entropy, int igro
                "fix sph/astro steps individual: {} is not available with individual timesteps "
                "(use steps global)",
                what);
-  if (group->count(igroup) != atom->natoms)
+  // atoms of other types (point masses, moved by other fixes at every step) are always active
+  // for the gravity styles (ActiveSet)
+  if (pair->gas_outside(group->bitmask[igroup]) > 0)
     error->all(FLERR,
-               "fix sph/astro steps individual: group {} must hold all particles (each pair "
-               "is evaluated when one of its particles is active)",
+               "fix sph/astro steps individual: group {} must hold all SPH gas particles (the "
+               "atom types of pair sph/astro's pair_coeff: each pair is evaluated when one of "
+               "its particles is active)",
                group->names[igroup]);
   // (the tree's own part follows the active particles: only the PPPM part of its periodic
   // TreePM can wait for synchronisation points)

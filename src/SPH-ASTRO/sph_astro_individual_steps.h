@@ -98,8 +98,8 @@ class IndividualSteps : protected LAMMPS_NS::Pointers, public LongRangeSchedule 
   static void warn_keywords(LAMMPS_NS::LAMMPS *lmp, const std::map<std::string, std::string> &given,
                             bool individual, bool long_range_sync, int levels);
   // what the hierarchy does not carry between a particle's evaluations is an error; the fix's
-  // group (igroup) must hold all particles
-  void check_options(const PairOptions &o, bool entropy, int igroup);
+  // group (igroup) must hold all SPH gas particles (point masses may be outside)
+  void check_options(const LAMMPS_NS::PairSPHAstro *pair, bool entropy, int igroup);
   // a run: continue the hierarchy where the last run (or the restart file) left it, or start
   // it anew (first run, or v, u or the particles changed in between)
   void init(const StateIndex &state, bool state_unchanged);
@@ -139,8 +139,13 @@ class IndividualSteps : protected LAMMPS_NS::Pointers, public LongRangeSchedule 
   // the active particles' new bins (wanted: their criteria), the limiter, the next step
   void end_of_step(const std::vector<double> &wanted, LAMMPS_NS::PairSPHAstro *pair);
   // owned atom i is inside its step at the current time (after end_of_step): its v and u are
-  // those of the middle of its step, d2_vest and d_uest those of now
-  bool mid_step(int i) const { return started_ && atom->dvector[idx_.begin][i] != ti_now_; }
+  // those of the middle of its step, d2_vest and d_uest those of now (atoms outside the group,
+  // moved by other fixes at every step, never)
+  bool mid_step(int i) const
+  {
+    return started_ && (atom->mask[i] & owner_groupbit()) &&
+        atom->dvector[idx_.begin][i] != ti_now_;
+  }
   // the LAMMPS timestep to the next end of a particle step
   double next_dt() const { return (ti_next_ - ti_now_) * tick(); }
 
@@ -200,6 +205,7 @@ class IndividualSteps : protected LAMMPS_NS::Pointers, public LongRangeSchedule 
 
  private:
   LAMMPS_NS::Fix *owner_;
+  int owner_groupbit() const;    // (owner_->groupbit: fix.h is not included here)
   int levels_;
   bool pair_kicks_;
   StateIndex state_;

@@ -21,7 +21,8 @@ using namespace LAMMPS_NS;
 namespace SPHAstro {
 
 /* ----------------------------------------------------------------------
-   pair_style sph/astro [kernel NAME] [eos ideal GAMMA | isothermal CS | polytropic K GAMMA]
+   pair_style sph/astro [kernel NAME] [eos ideal GAMMA | isothermal CS | polytropic K GAMMA |
+                                              barotropic CS RHOCRIT GAMMA]
                         [viscosity classic ALPHA BETA | signal ALPHA [BETA] | none]
                         [balsara yes|no] [reconstruct yes|no [trigger T] [gate P]]
                         [conductivity ALPHA_U] [conduction KAPPA] [epsilon EPS]
@@ -86,10 +87,32 @@ void PairOptions::parse(LAMMPS *lmp, int narg, char **arg)
           error->all(FLERR, "pair_style sph/astro eos polytropic: gamma = {} must be > 1",
                      arg[iarg + 3]);
         iarg += 4;
+      } else if (model == "barotropic") {
+        // P = c_s^2 rho [1 + (rho/rho_crit)^(gamma-1)] (sph_astro_eos.h)
+        need(5, "eos barotropic");
+        eos.type = EOSType::BAROTROPIC;
+        eos.cs = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+        eos.rho_crit = utils::numeric(FLERR, arg[iarg + 3], false, lmp);
+        eos.gamma = utils::numeric(FLERR, arg[iarg + 4], false, lmp);
+        if (!(eos.cs > 0.0) || !std::isfinite(eos.cs))
+          error->all(FLERR,
+                     "pair_style sph/astro eos barotropic: sound speed {} must be finite and > 0",
+                     arg[iarg + 2]);
+        if (!(eos.rho_crit > 0.0) || !std::isfinite(eos.rho_crit))
+          error->all(FLERR,
+                     "pair_style sph/astro eos barotropic: critical density {} must be finite and "
+                     "> 0",
+                     arg[iarg + 3]);
+        if (!(eos.gamma > 1.0) || !std::isfinite(eos.gamma))
+          error->all(FLERR,
+                     "pair_style sph/astro eos barotropic: gamma = {} must be finite and > 1 (the "
+                     "adiabatic exponent above the critical density, e.g. 1.4)",
+                     arg[iarg + 4]);
+        iarg += 5;
       } else
         error->all(FLERR,
                    "pair_style sph/astro: unknown eos '{}'; allowed: ideal GAMMA, isothermal CS, "
-                   "polytropic K GAMMA",
+                   "polytropic K GAMMA, barotropic CS RHOCRIT GAMMA",
                    model);
     } else if (key == "viscosity") {
       need(2, key);
@@ -219,7 +242,9 @@ void PairOptions::parse(LAMMPS *lmp, int narg, char **arg)
 void PairOptions::check_scheme(LAMMPS *lmp, bool gradh, bool entropy, bool has_switch) const
 {
   Error *error = lmp->error;
-  const char *eos_name = eos.type == EOSType::ISOTHERMAL ? "isothermal" : "polytropic";
+  const char *eos_name = eos.type == EOSType::ISOTHERMAL ? "isothermal"
+      : eos.type == EOSType::BAROTROPIC                  ? "barotropic"
+                                                         : "polytropic";
   if (conductivity > 0.0 && !eos.uses_energy() && lmp->comm->me == 0)
     error->warning(FLERR,
                    "pair_style sph/astro: conductivity {} has no effect with eos {} (only the "
@@ -275,13 +300,14 @@ void PairOptions::check_scheme(LAMMPS *lmp, bool gradh, bool entropy, bool has_s
 }
 
 // layout: 3 ints (kernel, eos, viscosity bits), 7 doubles, kappa, option bits (8: variable h),
-// trigger, gate
+// trigger, gate; the third double is K, or rho_crit of eos barotropic (which has no K)
 void PairOptions::write_restart(FILE *fp, bool variable_h) const
 {
   const int ival[3] = {static_cast<int>(kernel), static_cast<int>(eos.type),
                        (has_viscosity() ? 1 : 0) + (balsara ? 2 : 0) +
                            (signal_viscosity() ? 4 : 0) + (reconstruct ? 8 : 0)};
-  const double dval[7] = {eos.gamma, eos.cs, eos.K, alpha, beta, epsilon, conductivity};
+  const double third = eos.type == EOSType::BAROTROPIC ? eos.rho_crit : eos.K;
+  const double dval[7] = {eos.gamma, eos.cs, third, alpha, beta, epsilon, conductivity};
   fwrite(ival, sizeof(int), 3, fp);
   fwrite(dval, sizeof(double), 7, fp);
   fwrite(&conduction, sizeof(double), 1, fp);
@@ -322,7 +348,10 @@ bool PairOptions::read_restart(LAMMPS *lmp, FILE *fp)
   reconstruct = (ival[2] & 8) != 0;
   eos.gamma = dval[0];
   eos.cs = dval[1];
-  eos.K = dval[2];
+  if (eos.type == EOSType::BAROTROPIC)
+    eos.rho_crit = dval[2];
+  else
+    eos.K = dval[2];
   alpha = dval[3];
   beta = dval[4];
   epsilon = dval[5];

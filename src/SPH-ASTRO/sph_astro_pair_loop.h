@@ -41,7 +41,12 @@ struct Particles {
   const double *rmass;
   const double *mass;
   int nlocal, nall;
+  // per type: 1 if SPH gas (the types of pair sph/astro's pair_coeff); null: every type. Atoms
+  // of other types (point masses under other fixes and pair styles) are in no list and get no
+  // SPH state (their P, c_s, div v, du/dt stay 0)
+  const int *sph_type = nullptr;
   double mass_of(int i) const { return rmass ? rmass[i] : mass[type[i]]; }
+  bool gas(int i) const { return !sph_type || sph_type[type[i]]; }
 };
 
 enum class KernelUse { SUPPORT, VALUE, GRADIENT };

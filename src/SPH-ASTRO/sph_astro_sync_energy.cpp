@@ -54,12 +54,13 @@ double SyncEnergy::total(int groupbit, const EOS &eos, const StateIndex &state)
   const double *rho = atom->dvector[state.rho];
   const double *u = atom->dvector[state.u];
   double local = 0.0;
+  // the kinetic energy of every atom (those outside the group, point masses moved by other
+  // fixes at every step, too: the potential energy holds their pairs), the thermal energy of
+  // the group's gas
   for (int i = 0; i < nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
     const double m = atom->rmass ? atom->rmass[i] : atom->mass[atom->type[i]];
-    local += m *
-        (0.5 * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]) +
-         eos.energy_of(rho[i], u[i]));
+    const double thermal = (mask[i] & groupbit) ? eos.energy_of(rho[i], u[i]) : 0.0;
+    local += m * (0.5 * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]) + thermal);
   }
   double sum = 0.0;
   MPI_Allreduce(&local, &sum, 1, MPI_DOUBLE, MPI_SUM, world);

@@ -49,8 +49,9 @@ class SyncEnergy : protected LAMMPS_NS::Pointers {
   double largest() const { return largest_; }
 
  private:
-  // E = sum_i m_i (v_i^2 / 2 + e(rho_i, u_i)) + W over the group at this step; NaN where the
-  // potential energy was not tallied at it (collective)
+  // E = sum_i m_i (v_i^2 / 2 + e(rho_i, u_i)) + W at this step, the thermal e over the group,
+  // the kinetic over all atoms; NaN where the potential energy was not tallied at it
+  // (collective)
   double total(int groupbit, const EOS &eos, const StateIndex &state);
   double latest_ = NAN;                      // error at the latest point after the one that set E0
   double largest_ = NAN;                     // largest |error| of this run's points

@@ -34,12 +34,17 @@ void equation_of_state(const PassContext &ctx, const EOS &eos, double h_cap,
   if (entropy) {
     const double g1 = eos.gamma - 1.0;
     for (int i = 0; i < nlocal; i++) {
+      if (!ctx.p.gas(i)) continue;
       if (init_entropy)
         entropy->Aest[i] = entropy->A[i] = g1 * entropy->u[i] * std::pow(rho[i], -g1);
       uest[i] = entropy->Aest[i] * std::pow(rho[i], g1) / g1;
     }
   }
   for (int i = 0; i < nlocal; i++) {
+    if (!ctx.p.gas(i)) {    // a point mass: no pressure
+      f.pressure[i] = f.soundspeed[i] = 0.0;
+      continue;
+    }
     if (!(rho[i] > 0.0) || !std::isfinite(rho[i]))
       ctx.error->one(FLERR, "pair_style sph/astro: atom {} has density {} ({}position not finite?)",
                      ctx.tag[i], rho[i],
@@ -67,6 +72,7 @@ void pressure_energy_density(const PassContext &ctx, const double *energy_sum)
 {
   const double *uest = ctx.uest;
   for (int i = 0; i < ctx.p.nlocal; i++) {
+    if (!ctx.p.gas(i)) continue;
     if (!(uest[i] > 0.0) || !std::isfinite(uest[i]))
       ctx.error->one(FLERR,
                      "pair_style sph/astro formulation pressure-energy: atom {} has specific "
@@ -88,11 +94,13 @@ void thermal_rates(const PassContext &ctx, const EOS &eos, bool omega, bool pdv_
   double *dudt = ctx.dudt;
   if (dAdt) {
     const double g1 = eos.gamma - 1.0;
-    for (int i = 0; i < nlocal; i++) dAdt[i] = g1 * std::pow(rho[i], -g1) * dudt[i];
+    for (int i = 0; i < nlocal; i++)
+      dAdt[i] = ctx.p.gas(i) ? g1 * std::pow(rho[i], -g1) * dudt[i] : 0.0;
   }
   if (pdv_done) return;
   for (int i = 0; i < nlocal; i++)
-    dudt[i] += f.pressure[i] / ((omega ? f.omega[i] : 1.0) * rho[i] * rho[i]) * f.vdotgradw[i];
+    if (ctx.p.gas(i))
+      dudt[i] += f.pressure[i] / ((omega ? f.omega[i] : 1.0) * rho[i] * rho[i]) * f.vdotgradw[i];
 }
 
 }    // namespace SPHAstro
