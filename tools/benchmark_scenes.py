@@ -17,11 +17,12 @@ run: the h iteration with grad-h terms, skin 0.5 h), ``sedov16``, ``sedov22``, `
 n 16, MSM gravity, to t = 0.8), ``evrard16d``, ``evrard16t``, ``evrard24d``, ``evrard24t``
 (Evrard to t = 0.8 with direct summation or the tree), ``evrard24n`` and ``evrard24tm`` (n 24
 to t = 0.1 without gravity and with the tree: the memory gravity adds), ``evrard40t3`` (n 40,
-135 000 particles, the tree, to t = 3; only when asked for), the same scenes with individual timesteps (``sedov16i``,
+135 000 particles, the tree, to t = 3; only when asked for; ``evrard40t3b`` the same with
+fix balance, ``-var balance yes``), the same scenes with individual timesteps (``sedov16i``,
 ``sedov22i``, ``sedov35i``, ``noh24i``, ``evrardi``: ``-var steps individual`` with the inputs'
 default pair kicks; their updates are the particle-updates fix sph/astro counts; for the
 Evrard gravity rows ``evrard16di``, ``evrard16ti``, ``evrard24ti``, ``evrard24ni``,
-``evrard24tmi``, ``evrard40t3i``); the same with
+``evrard24tmi``, ``evrard40t3i``, ``evrard40t3bi``); the same with
 particle kicks, ``-var kicks particle``: ``sedov16ik``, ``sedov22ik``, ``sedov35ik``,
 ``noh24ik``, ``evrardik``; ``sedov16i1``, ``sedov22i1``, ``sedov35i1`` with ``-var limiter 1``
 (the default is 2 levels with pair kicks); ``sedov16p``, ``sedov22p``,
@@ -101,11 +102,15 @@ SCENES = {
                                        "thermoevery": 50}),
     "evrard24tm": ("evrard/in.evrard", {"n": 24, "gravity": "tree", "tend": 0.1,
                                         "thermoevery": 50}),
-    # the Evrard collapse with the tree at 135 000 particles to t = 3 (about 20 minutes)
+    # the Evrard collapse with the tree at 135 000 particles to t = 3 (about 30 minutes); "b":
+    # with fix balance, each particle weighted by its work (-var balance yes)
     "evrard40t3": ("evrard/in.evrard", {"n": 40, "gravity": "tree", "tend": 3.0,
                                         "thermoevery": 100}),
+    "evrard40t3b": ("evrard/in.evrard", {"n": 40, "gravity": "tree", "tend": 3.0,
+                                         "thermoevery": 100, "balance": "yes"}),
 }
-for _name in ("evrard16d", "evrard16t", "evrard24t", "evrard24n", "evrard24tm", "evrard40t3"):
+for _name in ("evrard16d", "evrard16t", "evrard24t", "evrard24n", "evrard24tm", "evrard40t3",
+              "evrard40t3b"):
     _script, _vars = SCENES[_name]
     SCENES[_name + "i"] = (_script, dict(_vars, steps="individual"))
 # the scenes with individual timesteps (fix sph/astro steps individual, its default pair kicks):
@@ -143,7 +148,7 @@ ORDER = ["box1e4", "box1e5", "box1e6", "box1e5i"] + [
     "noh24", "noh24i", "noh24ik", "evrard", "evrardi", "evrardik", "evrard16d", "evrard16t",
     "evrard16ti", "evrard16di", "evrard24d", "evrard24t", "evrard24ti", "evrard24ni",
     "evrard24tmi", "swift35", "swift56"]
-# (evrard40t3i, about 20 minutes on 2 ranks, only when asked for)
+# (evrard40t3i and evrard40t3bi, about 30 minutes each on 2 ranks, only when asked for)
 
 _LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", re.M)
 # (with individual steps the line gives entries per row made, of reach rows: no half list)
@@ -292,7 +297,8 @@ def main():
     wanted = [r for r in args.rows.split(",") if r]
     for r in wanted:
         if r not in SCENES and r not in SWIFT_ROWS:
-            parser.error(f"unknown row '{r}'; allowed: {', '.join(ORDER)}, evrard40t3i")
+            parser.error(f"unknown row '{r}'; allowed: {', '.join(ORDER)}, evrard40t3i, "
+                         "evrard40t3bi")
     fixed = run_lammps("fixed", args.np, args.outdir, env)
     rows = []
     for name in wanted:

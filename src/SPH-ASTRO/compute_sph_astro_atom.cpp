@@ -17,6 +17,7 @@
 
 #include "compute_sph_astro_atom.h"
 
+#include "sph_astro_fields.h"
 #include "sph_astro_state.h"
 
 #include "atom.h"
@@ -122,10 +123,9 @@ void ComputeSPHAstroAtom::compute_peratom()
                "compute sph/astro/atom: pair sph/astro last evaluated step {} with {} local "
                "atoms, not the current step {} with {}; use it during or right after a run",
                pair_->computed_step(), pair_->computed_nlocal(), update->ntimestep, nlocal);
-  int ncol;
   // omega: 1 unless variable h iterates; alpha: the switch's or the pair's constant
-  const double *omega = static_cast<double *>(pair_->extract_peratom("omega", ncol));
-  const bool gradh_omega = pair_->extract_peratom("omega_valid", ncol) != nullptr;
+  const SPHAstro::Fields &pair_fields = pair_->fields();
+  const double *omega = pair_->omega();
   const double *alpha = pair_->alpha_per_atom();
   // with pair sph/astro density continuity the counts take a neighbour pass: only if asked
   const int *mask = atom->mask;
@@ -137,13 +137,13 @@ void ComputeSPHAstroAtom::compute_peratom()
   }
   const double *columns[12] = {atom->dvector[state_->rho],
                                atom->dvector[state_->h],
-                               static_cast<double *>(pair_->extract_peratom("pressure", ncol)),
-                               static_cast<double *>(pair_->extract_peratom("soundspeed", ncol)),
+                               pair_fields.pressure,
+                               pair_fields.soundspeed,
                                atom->dvector[state_->u],
                                has_nneigh ? pair_->neighbour_counts() : nullptr,
-                               static_cast<double *>(pair_->extract_peratom("divv", ncol)),
+                               pair_fields.divv,
                                atom->dvector[state_->dudt],
-                               gradh_omega ? omega : nullptr,
+                               omega,
                                alpha,
                                steps_.bin >= 0 ? atom->dvector[steps_.bin] : nullptr,
                                fix_ ? dt_.data() : nullptr};

@@ -19,6 +19,7 @@
 #include "fix_sph_astro_snapshot.h"
 
 #include "pair_sph_astro.h"
+#include "sph_astro_fields.h"
 #include "sph_astro_kernel.h"
 #include "sph_astro_options.h"
 #include "sph_astro_state.h"
@@ -277,8 +278,7 @@ int FixSPHAstroSnapshot::pack(double *buf, const double *origin)
   const double *rho = atom->dvector[rho_];
   const double *h = atom->dvector[h_];
   const double *u = atom->dvector[u_];
-  int ncol;
-  const double *pressure = static_cast<double *>(pair_->extract_peratom("pressure", ncol));
+  const double *pressure = pair_->fields().pressure;
   const double *alpha = pair_->alpha_per_atom();
   int n = 0;
   for (int i = 0; i < nlocal; i++) {

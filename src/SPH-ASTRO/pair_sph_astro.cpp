@@ -571,6 +571,11 @@ const double *PairSPHAstro::omega() const
   return gradh() ? fields_->omega : nullptr;
 }
 
+const double *PairSPHAstro::dphidh_sums() const
+{
+  return dphidh_sums_ && gradh() ? fields_->dphidh_sum : nullptr;
+}
+
 double *PairSPHAstro::eval_density() const
 {
   return opt_->density_continuity ? atom->dvector[continuity_index_->rhoest]
@@ -659,11 +664,6 @@ void *PairSPHAstro::extract_peratom(const char *name, int &ncol)
     ncol = VGRAD_DATA;
     return o.reconstruction() ? (void *) f.vgrad : nullptr;
   }
-  // non-null when omega holds grad-h factors (variable h by iteration)
-  if (strcmp(name, "omega_valid") == 0) return (void *) omega();
-  // sum_softening_derivatives(): S_i of the owned atoms, of this step's evaluation
-  if (strcmp(name, "dphidh_sum") == 0)
-    return (void *) (dphidh_sums_ && gradh() ? f.dphidh_sum : nullptr);
   return nullptr;
 }
 

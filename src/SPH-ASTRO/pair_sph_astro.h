@@ -83,6 +83,9 @@ class PairSPHAstro : public Pair {
   int computed_nlocal() const { return computed_nlocal_; }
   // grad-h factors Omega, null unless fix sph/astro/h iterate
   const double *omega() const;
+  // pair sph/astro/gravity's adaptive softening: S_i = sum_j m_j dphi(r_ij, h_i)/dh_i of the
+  // h iteration (owned atoms), null unless it asked for them and h iterates
+  const double *dphidh_sums() const;
   // the density of the latest force evaluation: the summed d_rho, or with density continuity
   // the prediction d_rhoest (owned and ghost atoms)
   double *eval_density() const;
@@ -144,8 +147,8 @@ class PairSPHAstro : public Pair {
   }
   // pair sph/astro/gravity's adaptive softening (its init_style asks): the h iteration also
   // sums, for the owned atoms, S_i = sum_{j != i} m_j dphi(r_ij, h_i)/dh_i over the kernel
-  // neighbours (extract_peratom "dphidh_sum"; this style acts on every atom type, so these
-  // are all gravitating neighbours within R h_i)
+  // neighbours (dphidh_sums(); this style acts on every gas type, so these are all gravitating
+  // gas neighbours within R h_i)
   void sum_softening_derivatives() { dphidh_sums_ = true; }
   // the active flags of owned and ghost atoms set for this step (null: global stepping)
   const char *active_flags() const { return active_; }

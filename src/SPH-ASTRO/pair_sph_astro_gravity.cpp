@@ -421,21 +421,20 @@ void PairSPHAstroGravity::compute(int eflag, int vflag)
   if (vflag_fdotr) virial_fdotr_compute();
 }
 
-/* ----------------------------------------------------------------------
-   the zeta terms apply with pair sph/astro in grad-h mode (its extract_peratom("omega_valid")
-   is non-null), unless switched off; its Omega and rho must be of this step
-------------------------------------------------------------------------- */
-
 bool PairSPHAstroGravity::periodic_tree() const
 {
   return split_ == Split::TREE && domain->xperiodic && domain->yperiodic && domain->zperiodic;
 }
 
+/* ----------------------------------------------------------------------
+   the zeta terms apply with pair sph/astro in grad-h mode (its Omega is non-null), unless
+   switched off; its Omega and rho must be of this step
+------------------------------------------------------------------------- */
+
 bool PairSPHAstroGravity::zeta_terms_apply()
 {
   if (!zeta_on_ || !have_state_ || !sph_) return false;
-  int ncol;
-  if (!sph_->extract_peratom("omega_valid", ncol)) return false;
+  if (!sph_->omega()) return false;
   if (sph_->computed_step() != update->ntimestep || sph_->computed_nlocal() != atom->nlocal)
     error->all(FLERR,
                "pair_style sph/astro/gravity: the density and grad-h factors of pair sph/astro "

@@ -108,9 +108,8 @@ void PairSPHAstroGravity::compute_zeta()
   }
   const double *h = state_h();
   const double *rho = atom->dvector[state_->rho];
-  int ncol;
-  const double *omega = static_cast<const double *>(sph_->extract_peratom("omega_valid", ncol));
-  const auto *sums = static_cast<const double *>(sph_->extract_peratom("dphidh_sum", ncol));
+  const double *omega = sph_->omega();
+  const double *sums = sph_->dphidh_sums();
   if (!sums)
     error->all(FLERR,
                "pair_style sph/astro/gravity: pair sph/astro has no zeta sums of step {} (a "

@@ -45,7 +45,7 @@
 #include "sph_astro_due_pairs.h"
 #include "sph_astro_neigh_view.h"
 #include "sph_astro_neighbour_tree.h"
-#include "sph_astro_passes.h"
+#include "sph_astro_wide_rows.h"
 
 #include <memory>
 #include <utility>

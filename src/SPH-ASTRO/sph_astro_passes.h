@@ -25,6 +25,7 @@
 #include "sph_astro_iact.h"
 #include "sph_astro_options.h"
 #include "sph_astro_pair_loop.h"
+#include "sph_astro_wide_rows.h"
 
 #include <vector>
 
@@ -71,14 +72,6 @@ void count_neighbours(const PassContext &ctx, bool two_h);
 
 // the h-rho iteration over a full list (Springel & Hernquist 2002; Price 2012, sec. 2.4)
 enum class VelocitySums { NONE, CURL, GRADIENT };
-// the rows of an h iteration that went past its list's limit: every j with r_ij < R h_row,
-// h_row = min(WIDE_ROW x h, h_cap) (returned)
-struct WideRows {
-  static constexpr double WIDE_ROW = 1.5;
-  virtual const int *row(int i, double h, double &h_row, int &n) = 0;
-  virtual ~WideRows() = default;
-};
-
 struct GradhSettings {
   double hfact, tolerance;
   int max_iterations;
