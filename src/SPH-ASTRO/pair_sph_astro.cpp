@@ -60,7 +60,7 @@ PairSPHAstro::PairSPHAstro(LAMMPS *lmp) :
 {
   single_enable = 0;
   restartinfo = 1;
-  one_coeff = 1;
+  one_coeff = 0;    // a subset of the types may be SPH (pair_coeff 1 1 under hybrid/overlay: sinks)
   manybody_flag = 1;    // forces depend on densities of both partners
   // rho, P, c_s, vest[3]; h, Omega, C (pressure-energy); alpha; u (cond.); Balsara f;
   // symmetric grad v, Delta
@@ -315,6 +315,7 @@ PassContext PairSPHAstro::context()
   ctx.error = error;
   ctx.tally = evflag ? this : nullptr;
   ctx.pairs = nullptr;
+  ctx.sph_type = sph_type_;
   return ctx;
 }
 

@@ -753,6 +753,8 @@ void *PairSPHAstroGravity::extract(const char *str, int &dim)
     resolve_gravity_constant();
     return (void *) &G_;
   }
+  // the fixed softening length of atoms without SPH state (0: none; fix sph/astro/sink: sinks)
+  if (strcmp(str, "gravity_hfixed") == 0) return (void *) &hfixed_;
   if (strcmp(str, "cut_coul") == 0) {
     const std::string kstyle = force->kspace ? force->kspace_style : "";
     if (force->kspace && kstyle != "pppm/sph/astro/gravity" && kstyle != "msm/sph/astro/gravity" &&

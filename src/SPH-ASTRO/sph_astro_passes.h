@@ -60,6 +60,10 @@ struct PassContext {
   // this evaluation and their owners (null: every ghost); the state goes to, and the sums come
   // back from, the marked ghosts only, and the force pass leaves the others out of its loops
   const char *ghosts_in_pairs = nullptr;
+  // per type: 1 if pair sph/astro acts on it (its pair_coeff); atoms of other types (sinks,
+  // stars) are in no list and get no density, pressure or sound speed (null: all types)
+  const int *sph_type = nullptr;
+  bool is_sph(int i) const { return !sph_type || sph_type[p.type[i]]; }
   int nzero() const { return newton ? p.nall : p.nlocal; }
 };
 

@@ -40,6 +40,10 @@ void equation_of_state(const PassContext &ctx, const EOS &eos, double h_cap,
     }
   }
   for (int i = 0; i < nlocal; i++) {
+    if (!ctx.is_sph(i)) {    // (a sink or star: no gas state)
+      f.pressure[i] = f.soundspeed[i] = 0.0;
+      continue;
+    }
     if (!(rho[i] > 0.0) || !std::isfinite(rho[i]))
       ctx.error->one(FLERR, "pair_style sph/astro: atom {} has density {} ({}position not finite?)",
                      ctx.tag[i], rho[i],
