@@ -56,6 +56,7 @@ void ComputeSPHAstroSink::init()
 void ComputeSPHAstroSink::compute_array()
 {
   invoked_array = update->ntimestep;
+  if (!fix_) init();    // (evaluated before the first run)
   const auto &sinks = fix_->gather_sinks();
   const int n = static_cast<int>(sinks.size());
   if (n != nrows_ || !array) {

@@ -187,10 +187,17 @@ void FixSPHAstroH::init()
     error->all(FLERR, "fix sph/astro/h requires fix sph/astro (integrator and per-particle state)");
   if (modify->get_fix_by_style("^sph/astro/h$").size() > 1)
     error->all(FLERR, "fix sph/astro/h: only one instance is allowed");
-  if (group->count(igroup) != atom->natoms) {
+  // the SPH particles (the types of pair sph/astro's pair_coeff: sinks and stars are not) outside
+  // the group
+  bigint outside_local = 0, outside = 0;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (pair_->setflag[atom->type[i]][atom->type[i]] && !(atom->mask[i] & groupbit))
+      outside_local++;
+  MPI_Allreduce(&outside_local, &outside, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  if (outside > 0) {
     if (mode_ == Mode::ITERATE)
       error->all(FLERR,
-                 "fix sph/astro/h iterate: group {} must hold all particles (the density "
+                 "fix sph/astro/h iterate: group {} must hold all SPH particles (the density "
                  "iteration sets h for every SPH particle)",
                  group->names[igroup]);
     else if (comm->me == 0)
