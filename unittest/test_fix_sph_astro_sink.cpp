@@ -303,6 +303,68 @@ TEST(Sink, TimestepBoundOfSinkPairs)
   EXPECT_GT(free->update->dt, 2.0 * expected);
 }
 
+// a self-gravitating uniform ball of gas at rest (mass 1, radius 1, G 1, direct summation, the
+// sinks softened with h 0.05) with creation above rho_crit = 0.1 (below its density 0.24):
+// the thermal check of Bate, Bonnell & Price 1995 (alpha = E_th/|E_grav| <= 1/2 over the gas
+// within racc) decides: for the gas within racc = 0.35 of a central particle (mass 0.043)
+// alpha = 1.5 c_s^2 r / (0.6 G M) is about 1.8 at c_s = 0.3, which makes no sink in 10 steps,
+// and 0.008 at c_s = 0.02, which makes sinks there (one per step at most: the whole ball is
+// above rho_crit); each then holds the gas that was within racc of it, and the total mass
+// stays to round-off
+void self_gravitating_ball(const Lammps &lmp, double cs)
+{
+  commands(lmp, {"units lj",
+                 "atom_style atomic",
+                 "atom_modify map array sort 0 0.0",
+                 "boundary s s s",
+                 "lattice fcc 500",
+                 "region box block -1.2 1.2 -1.2 1.2 -1.2 1.2 units box",
+                 "create_box 2 box",
+                 "fix mass all property/atom rmass ghost yes",
+                 "region ball sphere 0 0 0 1.0 units box",
+                 "create_atoms 1 region ball",
+                 "displace_atoms all random 0.005 0.005 0.005 4711 units box",
+                 "group gas type 1",
+                 "group sinks type 2",
+                 "set group gas mass $(1.0/count(gas))",
+                 "pair_style hybrid/overlay sph/astro kernel m4 eos isothermal " + num(cs) +
+                     " viscosity classic 1.0 2.0 sph/astro/gravity 100.0 h 0.05",
+                 "pair_coeff 1 1 sph/astro",
+                 "pair_coeff * * sph/astro/gravity",
+                 "fix gas gas sph/astro courant 0.3",
+                 "fix hvar gas sph/astro/h iterate hfact 1.2",
+                 "fix nve sinks nve",
+                 "fix sink sinks sph/astro/sink racc 0.35 create 0.1 type 2",
+                 "set group gas d_h 0.15",
+                 "neighbor 0.05 bin",
+                 "neigh_modify every 1 delay 0 check yes",
+                 "compute s sinks sph/astro/sink sink"});
+}
+
+TEST(Sink, CreationNeedsTheThermalCheck)
+{
+  {
+    auto lmp = open_lammps();
+    self_gravitating_ball(lmp, 0.3);
+    commands(lmp, {"run 10"});
+    EXPECT_EQ(fix_value(lmp, "sink", 3), 0.0) << "warm gas made a sink";
+  }
+  auto lmp = open_lammps();
+  self_gravitating_ball(lmp, 0.02);
+  const Totals before = totals(lmp);
+  commands(lmp, {"run 10"});
+  // (the whole ball is above rho_crit: a sink every step at most, outside the others' racc)
+  const double made = fix_value(lmp, "sink", 3);
+  EXPECT_GE(made, 1.0) << "cold gas made no sink";
+  EXPECT_LE(made, 10.0);
+  const auto rows = sink_rows(lmp);
+  ASSERT_EQ(static_cast<double>(rows.size()), made);
+  for (const auto &row : rows) EXPECT_GT(row[5], 0.0) << "sink " << row[0] << " accreted nothing";
+  const Totals after = totals(lmp);
+  EXPECT_LT(std::fabs(after.mass - before.mass), 1e-14 * before.mass);
+  EXPECT_EQ(after.natoms, before.natoms - fix_value(lmp, "sink", 2));
+}
+
 // bad input names the fix, the value and what is allowed
 TEST(Sink, BadInput)
 {
