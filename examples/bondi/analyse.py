@@ -3,11 +3,13 @@
 
 Usage (python3 of build/venv, on PATH after source build/env.sh)::
 
-    python3 examples/bondi/analyse.py bondi.dat [--t0 1.0] [--t1 TEND] [--rho 1e-3]
-        [--assert 'ratio=0.34,mass=1e-13']
+    python3 examples/bondi/analyse.py bondi.dat [--t0 0.2] [--t1 TEND] [--rho 1e-3]
+        [--assert 'ratio=0.72,mass=1e-14']
 
 bondi.dat is the file of in.bondi's fix ave/time: step, time, sink mass M, accreted mass,
-accreted particles, total mass. The measured rate is the least-squares slope of the accreted
+accreted particles, mass(all), the sinks' mass with its round-off (fix sph/astro/sink
+vector[6]), the number of gas particles and their mass m; the total mass is taken as the
+sinks' + N_gas m (mass(all) adds its own round-off, about N eps). The measured rate is the least-squares slope of the accreted
 mass against time over t0 <= t <= t1 (default: t0 to the end); the analytic one is Bondi's
 (1952, MNRAS 112, 195) isothermal rate
 
@@ -33,14 +35,15 @@ LAMBDA_ISOTHERMAL = math.exp(1.5) / 4.0
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("series", help="bondi.dat of in.bondi")
-    parser.add_argument("--t0", type=float, default=1.0, help="start of the fit (1.0)")
+    parser.add_argument("--t0", type=float, default=0.2, help="start of the fit (0.2)")
     parser.add_argument("--t1", type=float, default=None, help="end of the fit (the last time)")
     parser.add_argument("--rho", type=float, default=1e-3, help="rho_inf of the run (1e-3)")
-    cli.add_assert_argument(parser, "e.g. ratio=0.34,mass=1e-13 (ratio: a lower bound)")
+    cli.add_assert_argument(parser, "e.g. ratio=0.72,mass=1e-14 (ratio: a lower bound)")
     args = parser.parse_args(argv)
 
     data = np.loadtxt(args.series, comments="#")
-    t, msink, macc, nacc, mtot = data[:, 1], data[:, 2], data[:, 3], data[:, 4], data[:, 5]
+    t, msink, macc, nacc = data[:, 1], data[:, 2], data[:, 3], data[:, 4]
+    mtot = np.array([math.fsum([a, n * m]) for a, n, m in data[:, 6:9]])
     t1 = t[-1] if args.t1 is None else args.t1
     sel = (t >= args.t0) & (t <= t1)
     if sel.sum() < 3:

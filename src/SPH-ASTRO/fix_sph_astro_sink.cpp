@@ -74,7 +74,7 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 
 namespace {
-constexpr int SINK_DOUBLES = 13;      // tag, x, v, m, spin, macc, nacc
+constexpr int SINK_DOUBLES = 14;      // tag, x, v, m, spin, macc, nacc, mlow
 constexpr int RECORD_DOUBLES = 9;     // accretion record: sink tag, gas tag, m, r (3), v (3)
 constexpr int MEMBER_DOUBLES = 10;    // creation group: tag, m, r (3), v (3), e_th, h
 
@@ -116,8 +116,8 @@ FixSPHAstroSink::FixSPHAstroSink(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, n
   force_reneighbor = 1;
   next_reneighbor = -1;
   scalar_flag = 1;    // number of sinks
-  vector_flag = 1;    // [sinks, accreted mass, accreted particles, sinks created, dt limit]
-  size_vector = 5;
+  vector_flag = 1;    // [sinks, accreted mass, accreted particles, sinks made, dt bound, mass]
+  size_vector = 6;
   global_freq = 1;
   extscalar = 0;
   extvector = 0;
@@ -192,6 +192,7 @@ FixSPHAstroSink::~FixSPHAstroSink()
   memory->destroy(spin_);
   memory->destroy(macc_);
   memory->destroy(nacc_);
+  memory->destroy(mlow_);
 }
 
 int FixSPHAstroSink::setmask()
@@ -288,7 +289,8 @@ const std::vector<FixSPHAstroSink::Sink> &FixSPHAstroSink::gather_sinks()
                                       spin_[i][1],
                                       spin_[i][2],
                                       macc_[i],
-                                      nacc_[i]};
+                                      nacc_[i],
+                                      mlow_[i]};
     mine.insert(mine.end(), rec, rec + SINK_DOUBLES);
   }
   // (the owner of each record: one more gather of counts)
@@ -320,6 +322,7 @@ const std::vector<FixSPHAstroSink::Sink> &FixSPHAstroSink::gather_sinks()
     s.m = r[7];
     s.macc = r[11];
     s.nacc = r[12];
+    s.mlow = r[13];
     sink_owner_[k] = owner[order[k]];
   }
   // the local index of each sink this rank owns (by ID: sinks_ is sorted)
@@ -487,15 +490,24 @@ void FixSPHAstroSink::accrete()
     // M' = M + sum m_i; M' dx' = sum m_i r_i (positions relative to the sink); M' v' = M v + sum
     // m_i v_i
     double mass = s.m, mr[3] = {0.0, 0.0, 0.0}, p[3] = {s.m * s.v[0], s.m * s.v[1], s.m * s.v[2]};
-    double added = 0.0;
+    double added = 0.0, low = s.mlow;
     for (int q = first; q < last; q++) {
       const double *rec = &all[order[q] * RECORD_DOUBLES];
-      mass += rec[2];
+      // M' = M + m_i with its round-off kept (Neumaier's compensated sum), so that the sinks'
+      // mass plus the gas's stays the same to round-off of one sum over many events
+      const double sum = mass + rec[2];
+      low += std::fabs(mass) >= std::fabs(rec[2]) ? (mass - sum) + rec[2] : (rec[2] - sum) + mass;
+      mass = sum;
       added += rec[2];
       for (int d = 0; d < 3; d++) {
         mr[d] += rec[2] * rec[3 + d];
         p[d] += rec[2] * rec[6 + d];
       }
+    }
+    {    // (the round-off into the mass where it fits: M + low unchanged)
+      const double sum = mass + low;
+      low -= sum - mass;
+      mass = sum;
     }
     double shift[3], vnew[3];
     for (int d = 0; d < 3; d++) {
@@ -532,6 +544,7 @@ void FixSPHAstroSink::accrete()
       }
       macc_[i] += added;
       nacc_[i] += last - first;
+      mlow_[i] = low;
     }
     first = last;
   }
@@ -618,13 +631,15 @@ bool FixSPHAstroSink::try_create()
     atom->mask[i] = (atom->mask[i] & ~gasbit_) | groupbit;
     atom->dvector[h_index_][i] = 0.0;
     spin_[i][0] = spin_[i][1] = spin_[i][2] = 0.0;
-    macc_[i] = nacc_[i] = 0.0;
+    macc_[i] = nacc_[i] = mlow_[i] = 0.0;
   }
   newborn_.push_back(cand);
   total_created_ += 1.0;
   if (comm->me == 0)
-    utils::logmesg(lmp, "fix {} sph/astro/sink: atom {} became a sink at step {} (rho = {:.6g})\n",
-                   id, cand, update->ntimestep, top_rho);
+    utils::logmesg(lmp,
+                   "fix {} sph/astro/sink: atom {} became a sink at step {} (rho = {:.6g}) at "
+                   "{:.6g} {:.6g} {:.6g}\n",
+                   id, cand, update->ntimestep, top_rho, xc_all[0], xc_all[1], xc_all[2]);
   return true;
 }
 
@@ -839,8 +854,16 @@ double FixSPHAstroSink::compute_vector(int n)
       return total_events_;
     case 3:
       return total_created_;
-    default:
+    case 4:
       return last_dt_limit_;
+    default: {    // the sinks' mass with its round-off, summed in ID order
+      double mass = 0.0, low = 0.0;
+      for (const Sink &sink : gather_sinks()) {
+        mass += sink.m;
+        low += sink.mlow;
+      }
+      return mass + low;
+    }
   }
 }
 
@@ -853,6 +876,7 @@ void FixSPHAstroSink::grow_arrays(int nmax)
   memory->grow(spin_, nmax, 3, "sph/astro/sink:spin");
   memory->grow(macc_, nmax, "sph/astro/sink:macc");
   memory->grow(nacc_, nmax, "sph/astro/sink:nacc");
+  memory->grow(mlow_, nmax, "sph/astro/sink:mlow");
 }
 
 void FixSPHAstroSink::copy_arrays(int i, int j, int /*delflag*/)
@@ -860,12 +884,13 @@ void FixSPHAstroSink::copy_arrays(int i, int j, int /*delflag*/)
   for (int d = 0; d < 3; d++) spin_[j][d] = spin_[i][d];
   macc_[j] = macc_[i];
   nacc_[j] = nacc_[i];
+  mlow_[j] = mlow_[i];
 }
 
 void FixSPHAstroSink::set_arrays(int i)
 {
   spin_[i][0] = spin_[i][1] = spin_[i][2] = 0.0;
-  macc_[i] = nacc_[i] = 0.0;
+  macc_[i] = nacc_[i] = mlow_[i] = 0.0;
 }
 
 int FixSPHAstroSink::pack_exchange(int i, double *buf)
@@ -875,7 +900,8 @@ int FixSPHAstroSink::pack_exchange(int i, double *buf)
   buf[2] = spin_[i][2];
   buf[3] = macc_[i];
   buf[4] = nacc_[i];
-  return 5;
+  buf[5] = mlow_[i];
+  return 6;
 }
 
 int FixSPHAstroSink::unpack_exchange(int i, double *buf)
@@ -885,18 +911,20 @@ int FixSPHAstroSink::unpack_exchange(int i, double *buf)
   spin_[i][2] = buf[2];
   macc_[i] = buf[3];
   nacc_[i] = buf[4];
-  return 5;
+  mlow_[i] = buf[5];
+  return 6;
 }
 
 int FixSPHAstroSink::pack_restart(int i, double *buf)
 {
-  buf[0] = 6;    // (LAMMPS' convention: the count first)
+  buf[0] = 7;    // (LAMMPS' convention: the count first)
   buf[1] = spin_[i][0];
   buf[2] = spin_[i][1];
   buf[3] = spin_[i][2];
   buf[4] = macc_[i];
   buf[5] = nacc_[i];
-  return 6;
+  buf[6] = mlow_[i];
+  return 7;
 }
 
 void FixSPHAstroSink::unpack_restart(int nlocal, int nth)
@@ -910,16 +938,17 @@ void FixSPHAstroSink::unpack_restart(int nlocal, int nth)
   spin_[nlocal][2] = extra[nlocal][m++];
   macc_[nlocal] = extra[nlocal][m++];
   nacc_[nlocal] = extra[nlocal][m++];
+  mlow_[nlocal] = extra[nlocal][m++];
 }
 
 int FixSPHAstroSink::size_restart(int /*i*/)
 {
-  return 6;
+  return 7;
 }
 
 int FixSPHAstroSink::maxsize_restart()
 {
-  return 6;
+  return 7;
 }
 
 // global restart data: the totals
@@ -942,5 +971,5 @@ void FixSPHAstroSink::restart(char *buf)
 
 double FixSPHAstroSink::memory_usage()
 {
-  return 5.0 * atom->nmax * sizeof(double) + sinks_.capacity() * sizeof(Sink);
+  return 6.0 * atom->nmax * sizeof(double) + sinks_.capacity() * sizeof(Sink);
 }

@@ -34,6 +34,7 @@ class FixSPHAstroSink : public Fix, public SPHAstro::TimestepLimiter {
     double spin[3];    // angular momentum about its own centre of mass
     double macc;       // mass accreted since it was defined or created
     double nacc;       // gas particles accreted
+    double mlow;       // the round-off of m: the mass is m + mlow (compensated sums)
   };
 
   FixSPHAstroSink(class LAMMPS *, int, char **);
@@ -82,10 +83,12 @@ class FixSPHAstroSink : public Fix, public SPHAstro::TimestepLimiter {
   int gasbit_ = 0;
   int rho_index_ = -1, h_index_ = -1, u_index_ = -1;
 
-  // per-atom state (all atoms; used for the sinks): spin (3), accreted mass, accreted count
+  // per-atom state (all atoms; used for the sinks): spin (3), accreted mass, accreted count,
+  // round-off of the mass
   double **spin_ = nullptr;
   double *macc_ = nullptr;
   double *nacc_ = nullptr;
+  double *mlow_ = nullptr;    // round-off of rmass: the sink's mass is rmass + mlow (Neumaier)
 
   std::vector<Sink> sinks_;
   std::vector<int> sink_owner_;    // rank that owns sinks_[k]
