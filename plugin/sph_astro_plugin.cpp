@@ -17,10 +17,12 @@
 
 #include "compute_sph_astro_atom.h"
 #include "compute_sph_astro_global.h"
+#include "compute_sph_astro_sink.h"
 #include "compute_sph_astro_gravity_direct.h"
 #include "fix_sph_astro.h"
 #include "fix_sph_astro_h.h"
 #include "fix_sph_astro_owned.h"
+#include "fix_sph_astro_sink.h"
 #include "fix_sph_astro_snapshot.h"
 #include "fix_sph_astro_switch.h"
 #include "msm_sph_astro_gravity.h"
@@ -75,6 +77,16 @@ static Fix *fix_sph_astro_h_creator(LAMMPS *lmp, int narg, char **arg)
 static Fix *fix_sph_astro_owned_creator(LAMMPS *lmp, int narg, char **arg)
 {
   return new FixSPHAstroOwned(lmp, narg, arg);
+}
+
+static Fix *fix_sph_astro_sink_creator(LAMMPS *lmp, int narg, char **arg)
+{
+  return new FixSPHAstroSink(lmp, narg, arg);
+}
+
+static Compute *compute_sph_astro_sink_creator(LAMMPS *lmp, int narg, char **arg)
+{
+  return new ComputeSPHAstroSink(lmp, narg, arg);
 }
 
 static Fix *fix_sph_astro_switch_creator(LAMMPS *lmp, int narg, char **arg)
@@ -166,6 +178,11 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_sph_astro_snapshot_creator;
   (*register_plugin)(&plugin, lmp);
 
+  plugin.name = "sph/astro/sink";
+  plugin.info = "SPH-ASTRO sink particles: accretion (mass, momentum, spin), creation, timestep";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_sph_astro_sink_creator;
+  (*register_plugin)(&plugin, lmp);
+
   plugin.style = "compute";
   plugin.name = "sph/astro/atom";
   plugin.info = "SPH-ASTRO per-atom density, h, pressure, sound speed, u, neighbours";
@@ -175,6 +192,11 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "sph/astro/global";
   plugin.info = "SPH-ASTRO mass, momentum, angular momentum, energies, energy error";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &compute_sph_astro_global_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.name = "sph/astro/sink";
+  plugin.info = "SPH-ASTRO sinks of a fix sph/astro/sink: ID, mass, spin, accreted mass, rate";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &compute_sph_astro_sink_creator;
   (*register_plugin)(&plugin, lmp);
 
   plugin.name = "sph/astro/gravity/direct";

@@ -347,6 +347,9 @@ void FixSPHAstro::init()
   // the force styles below the integrator: which particles are active, when a grid solver
   // computes (their init has reset both)
   active_clients_ = steps_ ? active_set_clients(lmp) : std::vector<ActiveSetClient *>();
+  limiters_.clear();
+  for (Fix *fix : modify->get_fix_list())
+    if (auto *limiter = dynamic_cast<TimestepLimiter *>(fix)) limiters_.push_back(limiter);
   if (long_range_sync_)
     for (LongRangeClient *client : long_range_clients(lmp)) client->set_long_range_schedule(steps_);
   if (predicted_step_ != update->ntimestep || !unchanged) {
@@ -606,9 +609,12 @@ void FixSPHAstro::end_of_step()
 std::string FixSPHAstro::limits() const
 {
   return fmt::format("limited by atom {}: Courant dt {:.6g}, force dt {:.6g}, energy dt {:.6g}, "
-                     "conduction dt {:.6g}",
+                     "conduction dt {:.6g}{}",
                      last_limiting_atom_, last_dt_cv_, last_dt_force_, last_dt_energy_,
-                     last_dt_cond_);
+                     last_dt_cond_,
+                     std::isfinite(last_dt_limiter_)
+                         ? fmt::format(", other fixes (sinks) dt {:.6g}", last_dt_limiter_)
+                         : std::string());
 }
 
 void FixSPHAstro::post_run()
@@ -723,6 +729,13 @@ void FixSPHAstro::next_timestep(bool from_end_of_step)
     // with no finite constraint (isolated cold particles) the step stays as it is
     else if (std::isfinite(dtnew))
       dt = dtnew;
+    // the bounds of other fixes (fix sph/astro/sink: the sinks' orbits and approach)
+    if (adaptive_) {
+      last_dt_limiter_ = INFINITY;
+      for (TimestepLimiter *limiter : limiters_)
+        last_dt_limiter_ = MIN(last_dt_limiter_, limiter->timestep_limit());
+      if (last_dt_limiter_ < dt) dt = last_dt_limiter_;
+    }
     if (adaptive_ && dtmax_ > 0.0) dt = MIN(dt, dtmax_);
     if (adaptive_ && dtmin_ > 0.0 && dt < dtmin_)
       error->all(FLERR, "fix sph/astro: timestep {} fell below dtmin = {} at step {} ({})", dt,

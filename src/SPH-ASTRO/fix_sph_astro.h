@@ -18,6 +18,7 @@ FixStyle(sph/astro,FixSPHAstro);
 #include "sph_astro_active_set.h"
 #include "sph_astro_restart_time.h"
 
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -162,6 +163,9 @@ class FixSPHAstro : public Fix, public SPHAstro::ContinuationStore {
   SPHAstro::IndividualSteps *steps_ = nullptr;
   // the force styles that evaluate the active particles only (gravity; found at init)
   std::vector<SPHAstro::ActiveSetClient *> active_clients_;
+  // fixes that bound the global step by their own criteria (fix sph/astro/sink; found at init)
+  std::vector<SPHAstro::TimestepLimiter *> limiters_;
+  double last_dt_limiter_ = INFINITY;
   void tell_active_set();
   SPHAstro::SyncEnergy *sync_energy_ = nullptr;    // individual steps: E at synchronisation
   bool pair_kicks_ = true;    // individual steps: pair forces and du/dt integrated pair by pair

@@ -815,6 +815,13 @@ void *PairSPHAstroGravity::extract(const char *str, int &dim)
     resolve_gravity_constant();
     return (void *) &G_;
   }
+  // the fixed softening length of atoms without SPH state (0: none; fix sph/astro/sink: sinks)
+  if (strcmp(str, "gravity_hfixed") == 0) return (void *) &hfixed_;
+  // the softening length per atom type (index 1..ntypes; 0: none given), after init
+  if (strcmp(str, "gravity_softening_types") == 0) {
+    dim = 1;
+    return soft_type_.empty() ? nullptr : (void *) soft_type_.data();
+  }
   if (strcmp(str, "cut_coul") == 0) {
     const std::string kstyle = force->kspace ? force->kspace_style : "";
     if (force->kspace && kstyle != "pppm/sph/astro/gravity" && kstyle != "msm/sph/astro/gravity" &&

@@ -93,6 +93,17 @@ class ContinuationStore {
   ~ContinuationStore() = default;
 };
 
+// a fix that bounds fix sph/astro's global timestep by criteria of its own (fix
+// sph/astro/sink: the sinks' orbits and approach); asked at every choice of the step
+class TimestepLimiter {
+ public:
+  // the longest step allowed now (collective: called on all ranks together; +inf: none)
+  virtual double timestep_limit() = 0;
+
+ protected:
+  ~TimestepLimiter() = default;
+};
+
 // the clients among the pair style, its hybrid sub-styles and the kspace style
 std::vector<ActiveSetClient *> active_set_clients(LAMMPS_NS::LAMMPS *lmp);
 std::vector<LongRangeClient *> long_range_clients(LAMMPS_NS::LAMMPS *lmp);
