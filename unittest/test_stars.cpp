@@ -279,4 +279,13 @@ TEST(Stars, SofteningErrorsNameTheCommandAndTheValue)
             "pair_coeff 1 1 sph/astro", "pair_coeff * * sph/astro/gravity", "fix gas all sph/astro",
             "set type 1 d_h 0.5", "group gas type 1"});
   expect_error("run 0", "softening for type 1: type 1 is SPH gas of pair sph/astro");
+  // fix sph/astro moves the gas only: a point mass in its group is refused
+  commands(lmp,
+           {"pair_style hybrid/overlay sph/astro sph/astro/gravity 10.0 softening 2 0.1",
+            "pair_coeff 1 1 sph/astro", "pair_coeff * * sph/astro/gravity"});
+  expect_error("run 0", "fix sph/astro: group all holds 1 atoms of types that are not SPH gas");
+  // (and with the gas's group it runs: the error above came from the group)
+  commands(lmp,
+           {"unfix gas", "fix gas gas sph/astro", "group stars type 2", "fix stars stars nve"});
+  EXPECT_EQ(error_of(lmp, "run 0"), "");
 }

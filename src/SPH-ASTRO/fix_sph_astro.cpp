@@ -285,6 +285,15 @@ void FixSPHAstro::init()
   box_check_ = domain->nonperiodic == 2 && force->kspace != nullptr;
   pair_ = dynamic_cast<PairSPHAstro *>(force->pair_match("^sph/astro$", 0, 0));
   if (!pair_) error->all(FLERR, "fix sph/astro requires pair_style sph/astro");
+  // point masses (atoms of types that are not gas of pair sph/astro) have no h or sound speed
+  // for the timestep criteria: other fixes move them
+  const bigint point_masses = pair_->point_masses_in(groupbit);
+  if (point_masses > 0)
+    error->all(FLERR,
+               "fix sph/astro: group {} holds {} atoms of types that are not SPH gas (not in a "
+               "pair_coeff I I of pair_style sph/astro); give fix sph/astro the group of the gas "
+               "and move point masses with fix nve",
+               group->names[igroup], point_masses);
   if (force->ftm2v != 1.0 || force->mvv2e != 1.0)
     error->all(FLERR,
                "fix sph/astro: units {} mix energy and force units (ftm2v = {}); use units lj, "

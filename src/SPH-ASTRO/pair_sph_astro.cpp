@@ -286,6 +286,15 @@ bigint PairSPHAstro::gas_outside(int groupbit) const
   return all;
 }
 
+bigint PairSPHAstro::point_masses_in(int groupbit) const
+{
+  bigint mine = 0, all = 0;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (!gas_type(atom->type[i]) && (atom->mask[i] & groupbit)) mine++;
+  MPI_Allreduce(&mine, &all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  return all;
+}
+
 double PairSPHAstro::init_one(int i, int j)
 {
   if (setflag[i][j] == 0)

@@ -124,6 +124,9 @@ class PairSPHAstro : public Pair {
   // the number of gas atoms outside a group (collective): those fix sph/astro and fix
   // sph/astro/h must hold all of
   bigint gas_outside(int groupbit) const;
+  // the number of atoms of a group that are not gas (collective): fix sph/astro refuses them
+  // (its timestep criteria need an h and a sound speed)
+  bigint point_masses_in(int groupbit) const;
   // the run keeps the h cap of the run it continues (fix sph/astro/h then keeps its ghost cutoff)
   bool carried_cap_used() const { return carried_cap_used_; }
   static constexpr double CARRIED_CAP_MAX = 4.0;
