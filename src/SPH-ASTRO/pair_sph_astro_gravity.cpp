@@ -426,24 +426,6 @@ bool PairSPHAstroGravity::periodic_tree() const
   return split_ == Split::TREE && domain->xperiodic && domain->yperiodic && domain->zperiodic;
 }
 
-/* ----------------------------------------------------------------------
-   the zeta terms apply with pair sph/astro in grad-h mode (its Omega is non-null), unless
-   switched off; its Omega and rho must be of this step
-------------------------------------------------------------------------- */
-
-bool PairSPHAstroGravity::zeta_terms_apply()
-{
-  if (!zeta_on_ || !have_state_ || !sph_) return false;
-  if (!sph_->omega()) return false;
-  if (sph_->computed_step() != update->ntimestep || sph_->computed_nlocal() != atom->nlocal)
-    error->all(FLERR,
-               "pair_style sph/astro/gravity: the density and grad-h factors of pair sph/astro "
-               "are not of step {} (zeta terms); list sph/astro before sph/astro/gravity in "
-               "pair_style hybrid/overlay, or use zeta no",
-               update->ntimestep);
-  return true;
-}
-
 namespace {
 // direct summation, atom i (xi, yi, zi, softening hi, G m_i) with the partners k < n: the
 // force fpair = -G m_i m_k (1/r^2)/r and energy e = 0 - 1/r of pair_term() beyond the softening

@@ -6,7 +6,8 @@
 ------------------------------------------------------------------------- */
 
 // Pair sph/astro/gravity (pair_sph_astro_gravity.cpp), its sums before the forces: the
-// gathered atoms of direct summation and the zeta terms of adaptive softening
+// gathered atoms of direct summation and the zeta terms of adaptive softening (and whether they
+// apply)
 // (Price & Monaghan 2007, MNRAS 374, 1347, eq. 26).
 
 #include "pair_sph_astro_gravity.h"
@@ -143,4 +144,22 @@ void PairSPHAstroGravity::compute_zeta()
     comm_stage_ = Stage::ZETA;
     comm->forward_comm(this, 2);
   }
+}
+
+/* ----------------------------------------------------------------------
+   the zeta terms apply with pair sph/astro in grad-h mode (its Omega is non-null), unless
+   switched off; its Omega and rho must be of this step
+------------------------------------------------------------------------- */
+
+bool PairSPHAstroGravity::zeta_terms_apply()
+{
+  if (!zeta_on_ || !have_state_ || !sph_) return false;
+  if (!sph_->omega()) return false;
+  if (sph_->computed_step() != update->ntimestep || sph_->computed_nlocal() != atom->nlocal)
+    error->all(FLERR,
+               "pair_style sph/astro/gravity: the density and grad-h factors of pair sph/astro "
+               "are not of step {} (zeta terms); list sph/astro before sph/astro/gravity in "
+               "pair_style hybrid/overlay, or use zeta no",
+               update->ntimestep);
+  return true;
 }
